@@ -1,0 +1,54 @@
+#pragma once
+// Time stepping of y' = y g(y) on [0, t_end] with implicit Lie group integrators whose stages are solved by
+// any solver/differential, compared against a reference solution.
+#include <vector>
+
+#include "solve.hpp"
+
+namespace lienewton {
+
+struct IntegrateRequest {
+  ProblemKind problem = ProblemKind::rigid_body;
+  int n = 3;
+  double h = 0.1;
+  double t_end = 1.0;
+  Integrator integrator = Integrator::implicit_euler;
+  Method method = Method::newton_group;
+  Differential differential = Differential::exact;
+  double tol = 1e-13;
+  int max_iterations = 100;
+  std::uint64_t seed = 1;
+  std::optional<Eigen::MatrixXd> z;  // y(0); default start_point(n, seed)
+  RigidBodyParams rigid_body;
+  int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none)
+  bool reference = true;              // compute the reference solution and the global error
+};
+
+struct StepRecord {
+  int step = 0;          // 1-based
+  double t = 0;          // time at the end of the step
+  int iterations = 0;    // summed over stages
+  double residual = 0;   // largest final stage residual
+  Status status = Status::converged;  // worst stage status
+  double energy = 0;     // rigid body kinetic energy after the step (0 for other problems)
+};
+
+struct IntegrateResult {
+  Status status = Status::converged;  // converged if every stage converged
+  std::string reason;
+  std::vector<StepRecord> steps;
+  std::optional<double> global_error;  // ||y_N - y_ref(t_end)||_F, when reference was requested
+  std::optional<double> energy_drift;  // rigid body: max_k |E_k - E_0| / E_0
+  double orthogonality_error = 0;      // max over steps of ||y^T y - I||_F
+  Eigen::MatrixXd y;                   // final state
+  std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))
+  std::vector<double> frame_times;
+  double cpu_seconds = 0;              // CPU time of the stepping (excluding the reference)
+  double reference_seconds = 0;
+};
+
+using StepCallback = std::function<bool(const StepRecord&)>;
+void validate(const IntegrateRequest& request);
+IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& on_step = {});
+
+}  // namespace lienewton

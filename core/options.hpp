@@ -1,0 +1,33 @@
+#pragma once
+// The user-facing choices of a solve: problem, method, differential, integrator. Names match the JSON API.
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace lienewton {
+
+enum class ProblemKind { paper_linear, paper_sine, rigid_body };
+// fixed-point (1.2); newton-group = Version 1 (3.5); newton-algebra = Version 2 (3.20)
+enum class Method { fixed_point, newton_group, newton_algebra };
+// finite-difference (3.18)/(3.19); dexpinv-0 (3.10)/(3.16); dexpinv-1 (3.11)/(3.17); exact (3.8)/(3.22)
+enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
+// implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6)
+enum class Integrator { implicit_euler, dirk_cg2 };
+
+std::string_view to_string(ProblemKind);
+std::string_view to_string(Method);
+std::string_view to_string(Differential);
+std::string_view to_string(Integrator);
+std::optional<ProblemKind> problem_from_string(std::string_view);
+std::optional<Method> method_from_string(std::string_view);
+std::optional<Differential> differential_from_string(std::string_view);
+std::optional<Integrator> integrator_from_string(std::string_view);
+
+inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
+                                               ProblemKind::rigid_body};
+inline constexpr Method kAllMethods[] = {Method::fixed_point, Method::newton_group, Method::newton_algebra};
+inline constexpr Differential kAllDifferentials[] = {Differential::finite_difference, Differential::dexpinv_0,
+                                                     Differential::dexpinv_1, Differential::exact};
+inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Integrator::dirk_cg2};
+
+}  // namespace lienewton

@@ -1,0 +1,49 @@
+#pragma once
+// A stability map: every (method, n, h) cell of a grid solved independently, in parallel, deterministically.
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "solve.hpp"
+
+namespace lienewton {
+
+struct SweepRequest {
+  ProblemKind problem = ProblemKind::paper_linear;
+  std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
+  Differential differential = Differential::finite_difference;
+  std::vector<int> n;     // default: 2..15 (the paper's)
+  std::vector<double> h;  // default: 2^-10 .. 2^10 (21 values)
+  std::uint64_t seed = 1;
+  double tol = 1e-13;
+  int max_iterations = 100;
+  int threads = 0;        // 0: all cores
+  RigidBodyParams rigid_body;
+};
+
+struct SweepCell {
+  Method method = Method::newton_group;
+  int n = 0;
+  double h = 0;
+  Status status = Status::max_iterations;
+  std::string reason;
+  int iterations = 0;
+  std::optional<double> rate;
+  double residual = 0;
+  double seconds = 0;
+};
+
+struct SweepResult {
+  std::vector<SweepCell> cells;  // ordered method-major, then n, then h (as requested), whatever the thread count
+  double seconds = 0;
+};
+
+// Fills in the paper's default grid where n or h are empty.
+SweepRequest with_defaults(SweepRequest request);
+void validate(const SweepRequest& request);
+
+// Called (serialised, from worker threads) as each cell finishes; return false to cancel the rest.
+using CellCallback = std::function<bool(const SweepCell&)>;
+SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {});
+
+}  // namespace lienewton

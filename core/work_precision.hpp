@@ -1,0 +1,51 @@
+#pragma once
+// Work-precision data: for each (integrator, method, differential) and each step size h, the CPU time of
+// the integration and its global error, so that speed can be charted against accuracy.
+#include <vector>
+
+#include "integrate.hpp"
+
+namespace lienewton {
+
+struct WorkPrecisionChoice {
+  Integrator integrator = Integrator::implicit_euler;
+  Method method = Method::newton_group;
+  Differential differential = Differential::exact;
+};
+
+struct WorkPrecisionRequest {
+  ProblemKind problem = ProblemKind::rigid_body;
+  int n = 3;
+  double t_end = 1.0;
+  std::vector<WorkPrecisionChoice> choices;
+  std::vector<double> h;  // default: 2^-2 .. 2^-7
+  double tol = 1e-13;
+  int max_iterations = 100;
+  std::uint64_t seed = 1;
+  RigidBodyParams rigid_body;
+};
+
+struct WorkPrecisionPoint {
+  double h = 0;
+  double cpu_seconds = 0;
+  double error = 0;
+  Status status = Status::converged;
+  int iterations = 0;  // total Newton/fixed-point iterations of the run
+};
+
+struct WorkPrecisionSeries {
+  WorkPrecisionChoice choice;
+  std::vector<WorkPrecisionPoint> points;
+};
+
+struct WorkPrecisionResult {
+  std::vector<WorkPrecisionSeries> series;
+  double reference_seconds = 0;
+  double seconds = 0;
+};
+
+void validate(const WorkPrecisionRequest& request);
+using SeriesCallback = std::function<bool(const WorkPrecisionSeries&)>;
+WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series = {});
+
+}  // namespace lienewton
