@@ -1,0 +1,155 @@
+#pragma once
+// The equation f(y) = 0, f: G -> g, that the solvers work on. Either the implicit Euler residual
+//   f(y) = v(y) - h g(y),  z^-1 y = exp(v(y))                                  (3.6), (3.7)
+// built from a vector field, or a user-supplied f with an optional exact differential df_y(u) (3.4).
+// It provides f at a point of the group (Version 1) or of the algebra, y = z exp(v) (Version 2, (3.21)),
+// and the differentials the user can choose between:
+//   Version 1: df_y(u) = dexpinv_v(u) - h dg_y(u)  exact (3.8), u - h dg_y(u) (3.10), u + [v,u]/2 - h dg_y(u) (3.11)
+//   Version 2: u - h dg_y(dexp_v(u))  exact (3.22), u - h dg_y(u) (3.16), u - h dg_y(u - [v,u]/2) (3.17)
+// Finite differences (3.18)/(3.19) are built by the solvers from f alone.
+#include <functional>
+#include <optional>
+#include <stdexcept>
+
+#include "lie_groups.hpp"
+#include "options.hpp"
+#include "problems.hpp"
+
+namespace lienewton {
+
+template <class G>
+class Equation {
+ public:
+  using Element = typename G::Element;
+  using Vector = typename G::Vector;
+  using Spectral = typename G::Spectral;
+  using UserF = std::function<Vector(const Element&)>;
+  using UserDf = std::function<Vector(const Element& y, const Vector& u)>;
+
+  // f evaluated at a point, with what the differentials reuse.
+  struct Point {
+    Element y;
+    Spectral v_form;       // Version 1: log of z^-1 y; Version 2: the spectral form of v (from exp)
+    Vector v;              // coordinates of v
+    Vector hg;             // h g(y) (implicit Euler only)
+    Vector f;              // f(y) (Version 1) or f~(v) (Version 2)
+    double angle = 0;      // largest rotation angle of z^-1 y, in [0, pi]
+    double algebra_angle = 0;  // largest rotation angle of v as an algebra element (may exceed pi)
+    bool in_domain = true; // false: z^-1 y is at angle pi, log (hence f) undefined
+  };
+
+  static Equation implicit_euler(G group, Element z, double h, const VectorField<G>& field) {
+    return Equation(group, std::move(z), h, &field, {}, {});
+  }
+  static Equation general(G group, Element z, UserF f, UserDf df = {}) {
+    return Equation(group, std::move(z), 0.0, nullptr, std::move(f), std::move(df));
+  }
+
+  const G& group() const { return group_; }
+  const Element& z() const { return z_; }
+  double h() const { return h_; }
+  bool is_implicit_euler() const { return field_ != nullptr; }
+  bool has_exact_differential() const { return field_ != nullptr || static_cast<bool>(df_); }
+  const VectorField<G>* field() const { return field_; }
+
+  // Version 1: f(y).
+  Point at(const Element& y) const {
+    Point p;
+    p.y = y;
+    if (!read_log(p)) return p;
+    if (field_) {
+      p.hg = h_ * field_->g(y);
+      p.f = p.v - p.hg;
+    } else {
+      p.f = f_(y);
+    }
+    return p;
+  }
+
+  // Version 2: f~(v) = f(z exp(v)); for implicit Euler v - h g(z exp v) (3.21), which needs no log.
+  Point at_algebra(const Vector& v) const {
+    Point p;
+    p.v_form = group_.exp_form(v);
+    p.v = v;
+    p.y = group_.compose(z_, group_.element(p.v_form));
+    p.algebra_angle = group_.angle(p.v_form);
+    p.angle = principal_angle(p.algebra_angle);
+    if (field_) {
+      p.hg = h_ * field_->g(p.y);
+      p.f = v - p.hg;
+    } else {
+      p.f = f_(p.y);
+    }
+    return p;
+  }
+
+  // Version 1 differential df_y(u), (3.8) / (3.10) / (3.11).
+  Vector df(const Point& p, const Vector& u, Differential d) const {
+    if (!field_) return df_(p.y, u);
+    switch (d) {
+      case Differential::dexpinv_0: return u - h_ * field_->dg(p.y, u);
+      case Differential::dexpinv_1: return u + 0.5 * group_.bracket(p.v, u) - h_ * field_->dg(p.y, u);
+      default: return group_.dexpinv(p.v_form, u) - h_ * field_->dg(p.y, u);
+    }
+  }
+
+  // Version 2 differential df~_v(u), (3.22) / (3.16) / (3.17); for a user f, df_y o dexp_v (3.24).
+  Vector dftilde(const Point& p, const Vector& u, Differential d) const {
+    if (!field_) return df_(p.y, group_.dexp(p.v_form, u));
+    switch (d) {
+      case Differential::dexpinv_0: return u - h_ * field_->dg(p.y, u);
+      case Differential::dexpinv_1: return u - h_ * field_->dg(p.y, u - 0.5 * group_.bracket(p.v, u));
+      default: return u - h_ * field_->dg(p.y, group_.dexp(p.v_form, u));
+    }
+  }
+
+  // The fixed-point map (1.2): y -> z exp(h g(y)).
+  Element fixed_point_map(const Point& p) const { return group_.compose(z_, group_.exp(p.hg)); }
+
+  // y solves y = z exp(h g(y)) to rounding (checked without log), but h g(y) has a rotation angle beyond pi,
+  // so log(z^-1 y) != h g(y): a true solution of (1.1) that f of (3.6) cannot see.
+  bool is_off_branch_solution(const Element& y) const {
+    if (!field_) return false;
+    const Vector w = h_ * field_->g(y);
+    const Spectral form = group_.exp_form(w);
+    if (!(group_.angle(form) > so3::kPi)) return false;
+    const Element defect = group_.compose(z_, group_.element(form)) - y;
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    return defect.norm() <= 256.0 * eps * std::sqrt(double(group_.dim())) * (1.0 + w.norm());
+  }
+
+ private:
+  Equation(G group, Element z, double h, const VectorField<G>* field, UserF f, UserDf df)
+      : group_(group), z_(std::move(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field), f_(std::move(f)),
+        df_(std::move(df)) {}
+
+  static double principal_angle(double theta) {
+    const double two_pi = 2.0 * so3::kPi;
+    const double wrapped = std::remainder(theta, two_pi);
+    return std::abs(wrapped);
+  }
+
+  // v = log(z^-1 y); false when z^-1 y is at the edge of log's domain (angle pi).
+  bool read_log(Point& p) const {
+    try {
+      p.v_form = group_.log_form(group_.compose(z_inv_, p.y));
+    } catch (const son::LogDomainError& e) {
+      p.angle = std::isnan(e.angle()) ? so3::kPi : e.angle();
+      p.in_domain = !field_;  // a user f does not need log
+      return p.in_domain;
+    }
+    p.angle = p.algebra_angle = group_.angle(p.v_form);
+    p.v = group_.coords(p.v_form);
+    p.in_domain = group_.log_defined(p.v_form) || !field_;
+    return p.in_domain;
+  }
+
+  G group_;
+  Element z_, z_inv_;
+  double h_;
+  const VectorField<G>* field_;
+  UserF f_;
+  UserDf df_;
+};
+
+}  // namespace lienewton

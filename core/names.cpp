@@ -1,0 +1,54 @@
+// The JSON names of the enums; one table per enum so the string and the value cannot drift apart.
+#include <utility>
+
+#include "options.hpp"
+#include "status.hpp"
+
+namespace lienewton {
+namespace {
+
+constexpr std::pair<Status, std::string_view> kStatusNames[] = {
+    {Status::converged, "converged"},   {Status::max_iterations, "max_iterations"},
+    {Status::diverged, "diverged"},     {Status::non_finite, "non_finite"},
+    {Status::left_log_domain, "left_log_domain"}, {Status::singular_differential, "singular_differential"},
+    {Status::stagnated, "stagnated"},   {Status::off_branch, "off_branch"},
+    {Status::cancelled, "cancelled"}};
+constexpr std::pair<ProblemKind, std::string_view> kProblemNames[] = {
+    {ProblemKind::paper_linear, "paper-linear"}, {ProblemKind::paper_sine, "paper-sine"},
+    {ProblemKind::rigid_body, "rigid-body"}};
+constexpr std::pair<Method, std::string_view> kMethodNames[] = {
+    {Method::fixed_point, "fixed-point"}, {Method::newton_group, "newton-group"},
+    {Method::newton_algebra, "newton-algebra"}};
+constexpr std::pair<Differential, std::string_view> kDifferentialNames[] = {
+    {Differential::finite_difference, "finite-difference"}, {Differential::dexpinv_0, "dexpinv-0"},
+    {Differential::dexpinv_1, "dexpinv-1"}, {Differential::exact, "exact"}};
+constexpr std::pair<Integrator, std::string_view> kIntegratorNames[] = {
+    {Integrator::implicit_euler, "implicit-euler"}, {Integrator::dirk_cg2, "dirk-cg2"}};
+
+template <class E, std::size_t K>
+std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {
+  for (const auto& [e, name] : table)
+    if (e == value) return name;
+  return "unknown";
+}
+template <class E, std::size_t K>
+std::optional<E> value_of(const std::pair<E, std::string_view> (&table)[K], std::string_view name) {
+  for (const auto& [e, n] : table)
+    if (n == name) return e;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view to_string(Status v) { return name_of(kStatusNames, v); }
+std::string_view to_string(ProblemKind v) { return name_of(kProblemNames, v); }
+std::string_view to_string(Method v) { return name_of(kMethodNames, v); }
+std::string_view to_string(Differential v) { return name_of(kDifferentialNames, v); }
+std::string_view to_string(Integrator v) { return name_of(kIntegratorNames, v); }
+std::optional<Status> status_from_string(std::string_view s) { return value_of(kStatusNames, s); }
+std::optional<ProblemKind> problem_from_string(std::string_view s) { return value_of(kProblemNames, s); }
+std::optional<Method> method_from_string(std::string_view s) { return value_of(kMethodNames, s); }
+std::optional<Differential> differential_from_string(std::string_view s) { return value_of(kDifferentialNames, s); }
+std::optional<Integrator> integrator_from_string(std::string_view s) { return value_of(kIntegratorNames, s); }
+
+}  // namespace lienewton

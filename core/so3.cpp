@@ -1,0 +1,75 @@
+#include "so3.hpp"
+
+#include <array>
+
+namespace lienewton::so3 {
+namespace {
+
+constexpr double kSeriesLimit = 2.0;    // below: power series for C and D (cancellation, see so3.hpp)
+constexpr double kUnderflowLimit = 1e-4;  // below: Taylor polynomials for A and B (t^2 underflow)
+
+// (t - sin t)/t^3 = sum_k (-1)^k t^2k / (2k+3)!
+constexpr std::array<double, 12> kCSeries = {
+    1.0 / 6,          -1.0 / 120,        1.0 / 5040,        -1.0 / 362880,     1.0 / 39916800,   -1.0 / 6227020800,
+    1.0 / 1307674368000, -1.0 / 355687428096000, 1.0 / 1.21645100408832e17, -1.0 / 5.109094217170944e19,
+    1.0 / 2.585201673888498e22, -1.0 / 1.5511210043330986e25};
+
+// |B_2k| / (2k)!, k = 1..18: (1 - (t/2)cot(t/2))/t^2 = sum_k |B_2k|/(2k)! t^(2k-2)
+constexpr std::array<double, 18> kDSeries = {
+    0.083333333333333329,  0.0013888888888888889,  3.3068783068783071e-05, 8.2671957671957675e-07,
+    2.08767569878681e-08,  5.2841901386874932e-10, 1.3382536530684679e-11, 3.3896802963225827e-13,
+    8.5860620562778452e-15, 2.1748686985580619e-16, 5.5090028283602295e-18, 1.3954464685812522e-19,
+    3.5347070396294673e-21, 8.9535174270375463e-23, 2.2679524523376829e-24, 5.7447906688722025e-26,
+    1.455172475614865e-27, 3.6859949406653103e-29};
+
+template <std::size_t K>
+double horner_in_t2(const std::array<double, K>& c, double t2) {
+  double acc = c[K - 1];
+  for (std::size_t k = K - 1; k-- > 0;) acc = acc * t2 + c[k];
+  return acc;
+}
+
+}  // namespace
+
+double sinc(double t) {
+  if (t < kUnderflowLimit) return 1.0 - t * t / 6.0;
+  return std::sin(t) / t;
+}
+
+double one_minus_cos_over_t2(double t) {
+  if (t < kUnderflowLimit) return 0.5 - t * t / 24.0;
+  const double s = std::sin(0.5 * t) / t;
+  return 2.0 * s * s;
+}
+
+double t_minus_sin_over_t3(double t) {
+  if (t < kSeriesLimit) return horner_in_t2(kCSeries, t * t);
+  return (t - std::sin(t)) / (t * t * t);
+}
+
+double dexpinv_coefficient(double t) {
+  if (t < kSeriesLimit) return horner_in_t2(kDSeries, t * t);
+  return (1.0 - 0.5 * t * std::cos(0.5 * t) / std::sin(0.5 * t)) / (t * t);
+}
+
+Vec log(const Mat& r) {
+  const double c = 0.5 * (r.trace() - 1.0);
+  const Vec s = vee(r);  // sin(t) * axis
+  const double sn = s.norm();
+  const double t = std::atan2(sn, c);
+  if (c > -0.5) {  // t < 2pi/3: sin t >= 0.86, the antisymmetric part determines the axis well
+    if (sn == 0.0) return Vec::Zero();
+    return (t / sn) * s;
+  }
+  // Near pi: (R + R^T)/2 - c I = (1 - c) a a^T. Take the column with the largest diagonal entry.
+  Mat b = 0.5 * (r + r.transpose());
+  b.diagonal().array() -= c;
+  Eigen::Index j = 0;
+  b.diagonal().maxCoeff(&j);
+  Vec axis = b.col(j) / std::sqrt(b(j, j) * (1.0 - c));
+  axis.normalize();
+  if (axis.dot(s) < 0.0) axis = -axis;
+  return t * axis;
+}
+
+}  // namespace lienewton::so3

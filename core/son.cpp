@@ -1,0 +1,193 @@
+#include "son.hpp"
+
+#include <cmath>
+#include <complex>
+
+namespace lienewton::son {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Reads the real Schur form T of a normal matrix: blocks of size 1 or 2 along the diagonal. The angle of a
+// 2x2 block [a b; c d] is atan2((c - b)/2, (a + d)/2) for a rotation and (c - b)/2 for a skew matrix: the
+// block is, to rounding, rot(theta) resp. theta J, whatever standardisation Eigen chose.
+template <class AngleOfBlock>
+std::vector<SpectralForm::Block> read_blocks(const Mat& t, AngleOfBlock angle_of) {
+  std::vector<SpectralForm::Block> blocks;
+  const int n = static_cast<int>(t.rows());
+  for (int i = 0; i < n;) {
+    if (i + 1 < n && t(i + 1, i) != 0.0) {
+      blocks.push_back({i, 2, angle_of(t(i, i), t(i, i + 1), t(i + 1, i), t(i + 1, i + 1))});
+      i += 2;
+    } else {
+      blocks.push_back({i, 1, 0.0});
+      i += 1;
+    }
+  }
+  return blocks;
+}
+
+Eigen::Matrix2d rotation2(double theta) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  return (Eigen::Matrix2d() << c, -s, s, c).finished();
+}
+
+// F(ad_v) for an analytic F, given its values F(i w) = re(w) + i im(w) on the imaginary axis (where the
+// eigenvalue differences of a skew v lie). In Q's basis, block (k,l) of X = Q^T U Q is mapped by
+// X -> A_k X - X A_l with A = theta J; J behaves like i, so
+//   2x2: the part of X commuting with J sees w = theta_k - theta_l, the anticommuting part w = theta_k + theta_l;
+//   2x1: w = theta_k; 1x2: w = theta_l (acting on the transposed row); 1x1: w = 0.
+template <class F>
+Mat apply_ad_function(const SpectralForm& s, const Mat& u, F f) {
+  Mat x = s.q.transpose() * u * s.q;
+  const Eigen::Matrix2d j = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
+  auto left = [&](double w, const auto& block) {
+    const std::complex<double> v = f(w);
+    return (v.real() * block + v.imag() * (j * block)).eval();
+  };
+  const std::complex<double> at_zero = f(0.0);
+  for (const auto& bk : s.blocks) {
+    for (const auto& bl : s.blocks) {
+      auto blk = x.block(bk.start, bl.start, bk.size, bl.size);
+      if (bk.size == 2 && bl.size == 2) {
+        const Eigen::Matrix2d m = blk;
+        const Eigen::Matrix2d jmj = j * m * j;
+        blk = left(bk.theta - bl.theta, 0.5 * (m - jmj)) + left(bk.theta + bl.theta, 0.5 * (m + jmj));
+      } else if (bk.size == 2) {
+        blk = left(bk.theta, Eigen::Vector2d(blk));
+      } else if (bl.size == 2) {
+        blk = left(bl.theta, Eigen::Vector2d(blk.transpose())).transpose();
+      } else {
+        blk *= at_zero.real();
+      }
+    }
+  }
+  Mat r = s.q * x * s.q.transpose();
+  return 0.5 * (r - r.transpose());
+}
+
+}  // namespace
+
+Mat hat(const Vec& alpha, int n) {
+  Mat m = Mat::Zero(n, n);
+  int k = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j, ++k) {
+      m(i, j) = alpha(k);
+      m(j, i) = -alpha(k);
+    }
+  return m;
+}
+
+Vec vee(const Mat& m) {
+  const int n = static_cast<int>(m.rows());
+  Vec a(algebra_dim(n));
+  int k = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j, ++k) a(k) = 0.5 * (m(i, j) - m(j, i));
+  return a;
+}
+
+double SpectralForm::max_angle() const {
+  double m = 0.0;
+  for (const auto& b : blocks) m = std::max(m, std::abs(b.theta));
+  return m;
+}
+
+Mat SpectralForm::skew() const {
+  const int n = static_cast<int>(q.rows());
+  Mat l = Mat::Zero(n, n);
+  for (const auto& b : blocks)
+    if (b.size == 2) {
+      l(b.start, b.start + 1) = -b.theta;
+      l(b.start + 1, b.start) = b.theta;
+    }
+  Mat v = q * l * q.transpose();
+  return 0.5 * (v - v.transpose());
+}
+
+Mat SpectralForm::rotation() const {
+  const int n = static_cast<int>(q.rows());
+  Mat d = Mat::Identity(n, n);
+  for (const auto& b : blocks)
+    if (b.size == 2) d.block<2, 2>(b.start, b.start) = rotation2(b.theta);
+  return q * d * q.transpose();
+}
+
+SpectralForm spectral_form_of_skew(const Mat& v) {
+  Eigen::RealSchur<Mat> schur(v);
+  SpectralForm s;
+  s.q = schur.matrixU();
+  s.blocks = read_blocks(schur.matrixT(), [](double, double b, double c, double) { return 0.5 * (c - b); });
+  return s;
+}
+
+SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, double margin) {
+  const auto nan = std::numeric_limits<double>::quiet_NaN();
+  if (r.rows() != r.cols() || r.rows() < 2) throw LogDomainError("log needs a square matrix of size >= 2", nan);
+  if (!r.allFinite()) throw LogDomainError("log of a matrix with non-finite entries", nan);
+  const int n = static_cast<int>(r.rows());
+  const double orth = (r.transpose() * r - Mat::Identity(n, n)).norm();
+  if (!(orth <= orthogonality_tol)) throw LogDomainError("log of a matrix that is not orthogonal", nan);
+
+  Eigen::RealSchur<Mat> schur(r);
+  const Mat& t = schur.matrixT();
+  SpectralForm s;
+  s.q = schur.matrixU();
+  s.blocks = read_blocks(t, [](double a, double b, double c, double d) {
+    return std::atan2(0.5 * (c - b), 0.5 * (a + d));
+  });
+  int minus_ones = 0;
+  for (const auto& b : s.blocks)
+    if (b.size == 1 && t(b.start, b.start) < 0.0) ++minus_ones;
+  if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", nan);
+  const double angle = minus_ones > 0 ? kPi : s.max_angle();
+  if (angle > kPi - margin)
+    throw LogDomainError("log undefined: rotation angle " + std::to_string(angle) + " is at pi", angle);
+  return s;
+}
+
+double max_angle(const Mat& r) {
+  // Eigenvalues of an orthogonal matrix are e^{i theta}; their arguments are the rotation angles.
+  const Eigen::VectorXcd ev = r.eigenvalues();
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < ev.size(); ++i) m = std::max(m, std::abs(std::arg(ev(i))));
+  return m;
+}
+
+Mat dexp(const SpectralForm& v, const Mat& u) {
+  // phi(x) = (1 - e^-x)/x at x = i w: sin(w)/w - i (1 - cos w)/w
+  return apply_ad_function(v, u, [](double w) {
+    if (w == 0.0) return std::complex<double>(1.0, 0.0);
+    const double s = std::sin(0.5 * w);
+    return std::complex<double>(std::sin(w) / w, -2.0 * s * s / w);
+  });
+}
+
+Mat dexpinv(const SpectralForm& v, const Mat& u) {
+  // psi(x) = x / (1 - e^-x) at x = i w: (w/2) cot(w/2) + i w/2
+  return apply_ad_function(v, u, [](double w) {
+    if (w == 0.0) return std::complex<double>(1.0, 0.0);
+    return std::complex<double>(0.5 * w / std::tan(0.5 * w), 0.5 * w);
+  });
+}
+
+Mat dexpinv_series(const Mat& v, const Mat& u, int p_max) {
+  // B_2p / (2p)!, p = 1..11
+  static constexpr double kB[] = {0.083333333333333329,  -0.0013888888888888889, 3.3068783068783071e-05,
+                                  -8.2671957671957675e-07, 2.08767569878681e-08, -5.2841901386874932e-10,
+                                  1.3382536530684679e-11, -3.3896802963225827e-13, 8.5860620562778452e-15,
+                                  -2.1748686985580619e-16, 5.5090028283602295e-18};
+  constexpr int kMaxOrder = static_cast<int>(sizeof(kB) / sizeof(kB[0]));
+  if (p_max < 0 || p_max > kMaxOrder) throw std::invalid_argument("dexpinv_series: p_max out of range");
+  Mat ad = bracket(v, u);
+  Mat result = u + 0.5 * ad;
+  for (int p = 1; p <= p_max; ++p) {
+    ad = bracket(v, ad);
+    result += kB[p - 1] * ad;
+    ad = bracket(v, ad);
+  }
+  return result;
+}
+
+}  // namespace lienewton::son

@@ -1,0 +1,71 @@
+#pragma once
+// SO(N), any N >= 2, through the spectral (real Schur) structure of normal matrices.
+// Coordinates on so(N) use the paper's basis b = E_ij - E_ji, i < j, in row-major order (1,2), (1,3), ...,
+// (1,N), (2,3), ..., (N-1,N); q = N(N-1)/2. The 2-norm of the coordinates is ||.||_F / sqrt(2).
+//
+// A skew matrix v and a rotation R = exp(v) share an orthogonal Q with Q^T v Q = blockdiag(theta_k J, 0) and
+// Q^T R Q = blockdiag(rot(theta_k), 1), J = [0 -1; 1 0]. That one SpectralForm yields exp, log, and the
+// exact dexp / dexpinv in O(N^3): on the eigenvectors of v, ad_v acts by lambda_i - lambda_j, so any analytic
+// F(ad_v) is applied blockwise in Q's basis (see apply_ad_function in son.cpp).
+#include <Eigen/Dense>
+#include <stdexcept>
+#include <vector>
+
+namespace lienewton::son {
+
+using Mat = Eigen::MatrixXd;
+using Vec = Eigen::VectorXd;
+
+inline int algebra_dim(int n) { return n * (n - 1) / 2; }
+
+// Angles closer than this to pi are refused by log: there the logarithm is not unique (exactly pi) and its
+// branch flips under rounding, so a "solution" would be meaningless.
+inline constexpr double kLogDomainMargin = 1e-10;
+
+// log was asked for a matrix outside its domain: not orthogonal, det -1, non-finite, or an angle within
+// kLogDomainMargin of pi (angle() reports the largest rotation angle found, or NaN if none).
+class LogDomainError : public std::domain_error {
+ public:
+  LogDomainError(const std::string& what, double angle) : std::domain_error(what), angle_(angle) {}
+  double angle() const { return angle_; }
+
+ private:
+  double angle_;
+};
+
+Mat hat(const Vec& alpha, int n);
+Vec vee(const Mat& m);  // coordinates of the skew part (m - m^T)/2
+
+struct SpectralForm {
+  Mat q;                     // orthogonal
+  struct Block {
+    int start;               // first row/column in Q's basis
+    int size;                // 1 (eigenvalue 0 of v / 1 of R) or 2 (rotation by theta)
+    double theta;            // 0 for size 1
+  };
+  std::vector<Block> blocks;
+  double max_angle() const;  // largest |theta|
+  Mat skew() const;          // v = Q blockdiag(theta J, 0) Q^T, exactly skew
+  Mat rotation() const;      // exp(v) = Q blockdiag(rot theta, 1) Q^T
+};
+
+SpectralForm spectral_form_of_skew(const Mat& v);
+// Throws LogDomainError. orthogonality_tol bounds ||R^T R - I||_F.
+SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol = 1e-8,
+                                       double margin = kLogDomainMargin);
+
+inline Mat exp(const Mat& v) { return spectral_form_of_skew(v).rotation(); }
+inline Mat log(const Mat& r) { return spectral_form_of_rotation(r).skew(); }
+double max_angle(const Mat& r);  // largest rotation angle of an orthogonal r (no domain check)
+
+inline Mat bracket(const Mat& a, const Mat& b) { return a * b - b * a; }
+
+// Exact differentials, applied to a skew U in O(N^3):
+//   dexp_v(U)    = sum (-1)^k / (k+1)! ad_v^k (U)                    (2.10)
+//   dexpinv_v(U) = U + 1/2 [v,U] + sum_p B_2p/(2p)! ad_v^2p (U)       (3.9)
+Mat dexp(const SpectralForm& v, const Mat& u);
+Mat dexpinv(const SpectralForm& v, const Mat& u);
+// (3.9) truncated after ad_v^(2 p_max): for comparison with the exact form.
+Mat dexpinv_series(const Mat& v, const Mat& u, int p_max);
+
+}  // namespace lienewton::son
