@@ -1,0 +1,57 @@
+#include "render/canvas.hpp"
+
+#include <cmath>
+
+namespace lienewton::render {
+
+Canvas::Canvas(int width, int height, Color background)
+    : width_(width), height_(height), background_(background), font_(Font::instance()) {}
+
+void Canvas::quad(const Point (&corners)[4], const float (&uv)[4], Color color, Point a, Point b, float half_width) {
+  // corners in order top-left, top-right, bottom-right, bottom-left; uv = {u0, v0, u1, v1}
+  const float us[4] = {uv[0], uv[2], uv[2], uv[0]};
+  const float vs[4] = {uv[1], uv[1], uv[3], uv[3]};
+  for (int i : {0, 1, 2, 0, 2, 3}) {
+    vertices_.push_back({corners[i].x, corners[i].y, us[i], vs[i], color, a.x, a.y, b.x, b.y, half_width});
+  }
+}
+
+void Canvas::rect(float x0, float y0, float x1, float y1, Color color) {
+  const float u = font_.solid_u(), v = font_.solid_v();
+  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {u, v, u, v}, color, {}, {}, 0);
+}
+
+void Canvas::line(Point a, Point b, float width, Color color) {
+  const float half = 0.5f * width;
+  const float pad = half + 1.0f;  // room for the antialiased fringe and the round caps
+  float dx = b.x - a.x, dy = b.y - a.y;
+  const float length = std::hypot(dx, dy);
+  if (length > 1e-6f) {
+    dx /= length;
+    dy /= length;
+  } else {
+    dx = 1;
+    dy = 0;
+  }
+  const Point along{dx * pad, dy * pad};
+  const Point across{-dy * pad, dx * pad};
+  const Point corners[4] = {{a.x - along.x + across.x, a.y - along.y + across.y},
+                            {b.x + along.x + across.x, b.y + along.y + across.y},
+                            {b.x + along.x - across.x, b.y + along.y - across.y},
+                            {a.x - along.x - across.x, a.y - along.y - across.y}};
+  quad(corners, {0, 0, 0, 0}, color, a, b, half);
+}
+
+void Canvas::text(std::string_view text, float x, float y, TextSize size, Color color, Align align) {
+  if (align != Align::left) {
+    const float w = font_.width(text, size);
+    x -= align == Align::center ? 0.5f * w : w;
+  }
+  glyphs_.clear();
+  font_.layout(text, size, x, y + 0.5f * font_.cap_height(size), glyphs_);
+  for (const GlyphQuad& g : glyphs_) {
+    quad({{g.x0, g.y0}, {g.x1, g.y0}, {g.x1, g.y1}, {g.x0, g.y1}}, {g.u0, g.v0, g.u1, g.v1}, color, {}, {}, 0);
+  }
+}
+
+}  // namespace lienewton::render

@@ -1,0 +1,111 @@
+#include "render/frames_scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace lienewton::render {
+namespace {
+
+constexpr Color kSphereOutline{190, 190, 190, 255};
+constexpr Color kGreatCircle{222, 222, 222, 255};
+
+void check_finite(const Eigen::Matrix3d& m, const char* what) {
+  if (!m.allFinite()) throw std::invalid_argument(std::string(what) + " has a non-finite entry");
+}
+
+// The great circle spanned by the unit vectors a and b.
+void great_circle(Canvas& canvas, const Camera& camera, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  constexpr int kSegments = 96;
+  Point previous = camera.project(a);
+  for (int i = 1; i <= kSegments; ++i) {
+    const double t = 2 * std::numbers::pi * i / kSegments;
+    const Point next = camera.project(std::cos(t) * a + std::sin(t) * b);
+    canvas.line(previous, next, 1.0f, kGreatCircle);
+    previous = next;
+  }
+}
+
+void dashed(Canvas& canvas, Point a, Point b, float width, Color color) {
+  constexpr float kDash = 7, kGap = 5;
+  const float length = std::hypot(b.x - a.x, b.y - a.y);
+  for (float s = 0; s < length; s += kDash + kGap) {
+    const float e = std::min(s + kDash, length);
+    canvas.line({a.x + (b.x - a.x) * s / length, a.y + (b.y - a.y) * s / length},
+                {a.x + (b.x - a.x) * e / length, a.y + (b.y - a.y) * e / length}, width, color);
+  }
+}
+
+// The three axes of one frame, farthest first so that nearer axes cover it.
+std::array<int, 3> back_to_front(const Camera& camera, const Eigen::Matrix3d& frame) {
+  std::array<int, 3> order{0, 1, 2};
+  std::stable_sort(order.begin(), order.end(), [&](int i, int j) {
+    return camera.depth(frame.col(i)) < camera.depth(frame.col(j));
+  });
+  return order;
+}
+
+void legend(Canvas& canvas) {
+  const float x = 10, line_height = 17;
+  float y = canvas.height() - 10 - 2 * line_height;
+  const Color gray{110, 110, 110, 255};
+  dashed(canvas, {x, y}, {x + 24, y}, 2.0f, gray);
+  canvas.text("start z", x + 32, y, TextSize::small, kTextColor);
+  y += line_height;
+  canvas.line({x, y}, {x + 24, y}, 1.5f, mix(gray, canvas.background(), 0.6));
+  canvas.text("earlier", x + 32, y, TextSize::small, kTextColor);
+  y += line_height;
+  canvas.line({x, y}, {x + 24, y}, kFinalAxisWidth, gray);
+  canvas.text("last", x + 32, y, TextSize::small, kTextColor);
+}
+
+}  // namespace
+
+void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::Matrix3d>& frames,
+                 const Eigen::Matrix3d& start) {
+  check_finite(start, "start");
+  for (const Eigen::Matrix3d& frame : frames) check_finite(frame, "frame");
+
+  const Point origin = camera.project(Eigen::Vector3d::Zero());
+  const float radius = static_cast<float>(camera.pixels_per_unit());
+  great_circle(canvas, camera, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+  great_circle(canvas, camera, Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ());
+  great_circle(canvas, camera, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX());
+  // The sphere's silhouette: under an orthographic camera always a circle of the projected radius.
+  constexpr int kOutlineSegments = 128;
+  for (int i = 0; i < kOutlineSegments; ++i) {
+    const double t0 = 2 * std::numbers::pi * i / kOutlineSegments;
+    const double t1 = 2 * std::numbers::pi * (i + 1) / kOutlineSegments;
+    canvas.line({origin.x + radius * float(std::cos(t0)), origin.y + radius * float(std::sin(t0))},
+                {origin.x + radius * float(std::cos(t1)), origin.y + radius * float(std::sin(t1))}, 1.5f,
+                kSphereOutline);
+  }
+
+  for (int axis : back_to_front(camera, start)) {
+    dashed(canvas, origin, camera.project(start.col(axis)), 2.0f, kAxisColors[axis]);
+  }
+  // Earlier frames go from nearly background (oldest) to clearly colored (the one before the last).
+  const std::size_t count = frames.size();
+  for (std::size_t i = 0; i + 1 < count; ++i) {
+    const double age = 1.0 - static_cast<double>(i + 1) / static_cast<double>(count);
+    for (int axis : back_to_front(camera, frames[i])) {
+      canvas.line(origin, camera.project(frames[i].col(axis)), 1.5f,
+                  mix(kAxisColors[axis], canvas.background(), 0.3 + 0.55 * age));
+    }
+  }
+  if (count > 0) {
+    const Eigen::Matrix3d& last = frames.back();
+    for (int axis : back_to_front(camera, last)) {
+      canvas.line(origin, camera.project(last.col(axis)), kFinalAxisWidth, kAxisColors[axis]);
+      // Label just beyond the tip, pushed outward from the origin.
+      const Point tip = camera.project(1.13 * last.col(axis));
+      static constexpr const char* kNames[3] = {"x", "y", "z"};
+      canvas.text(kNames[axis], tip.x, tip.y, TextSize::large, kAxisColors[axis], Align::center);
+    }
+  }
+  legend(canvas);
+}
+
+}  // namespace lienewton::render

@@ -1,0 +1,37 @@
+#pragma once
+// The render service's entry point: PNGs of rotation frames and of convergence heatmaps, drawn offscreen
+// with OpenGL (OSMesa or EGL, see gl_context.hpp).
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "core/sweep.hpp"
+#include "render/options.hpp"
+#include "render/render_unavailable.hpp"
+
+namespace lienewton::render {
+
+// Thread-safe. Owns a small pool of long-lived GL contexts (one per worker); a call borrows one, waiting
+// while all are busy. Contexts are created lazily: a creation failure throws RenderUnavailable from the call
+// (the next call tries again). Width and height must be in [64, 4096] (heatmap: or 0 for automatic);
+// otherwise std::invalid_argument names the field ("width"/"height").
+class Renderer {
+ public:
+  // rasterizer_threads caps llvmpipe's threads per context (LP_NUM_THREADS, unless the environment sets it);
+  // it takes effect only if this is the process' first renderer to create a context.
+  explicit Renderer(int workers = 1, int rasterizer_threads = 1);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // frames: y_0, y_1, ... (iterates or a trajectory), the last drawn bold; start: the point z, dashed.
+  std::vector<unsigned char> frames_png(const std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start,
+                                        const FramesOptions& options);
+  std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options);
+
+ private:
+  class Pool;
+  std::unique_ptr<Pool> pool_;
+};
+
+}  // namespace lienewton::render

@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "png_decode.hpp"
+#include "render/colormap.hpp"
+#include "render/heatmap_scene.hpp"
+#include "render/renderer.hpp"
+
+namespace lienewton::render {
+namespace {
+
+using testing::decode_png;
+using testing::DecodedImage;
+
+Renderer& renderer() {
+  static Renderer shared(1);
+  return shared;
+}
+
+SweepCell cell(Method method, int n, double h, Status status, int iterations, std::optional<double> rate,
+               double residual) {
+  SweepCell c;
+  c.method = method;
+  c.n = n;
+  c.h = h;
+  c.status = status;
+  c.iterations = iterations;
+  c.rate = rate;
+  c.residual = residual;
+  return c;
+}
+
+// Two methods x N in {2, 3} x h in {1/2, 1, 2}: iterations 3..7 where converged, three failure classes.
+SweepResult tiny_sweep() {
+  SweepResult sweep;
+  const Method methods[] = {Method::newton_group, Method::fixed_point};
+  const int ns[] = {2, 3};
+  const double hs[] = {0.5, 1.0, 2.0};
+  int k = 0;
+  for (Method m : methods) {
+    for (int n : ns) {
+      for (double h : hs) {
+        Status status = Status::converged;
+        if (m == Method::fixed_point && h == 2.0) status = n == 2 ? Status::diverged : Status::max_iterations;
+        if (m == Method::newton_group && n == 3 && h == 2.0) status = Status::left_log_domain;
+        const std::optional<double> rate = k % 4 == 0 ? std::nullopt : std::optional<double>(1.0 + 0.25 * k);
+        sweep.cells.push_back(cell(m, n, h, status, 3 + k % 5, rate, std::pow(10.0, -10 - k % 6)));
+        ++k;
+      }
+    }
+  }
+  return sweep;
+}
+
+// Every drawn cell's centre pixel has exactly the color its value or status calls for.
+void expect_cells_colored(const SweepResult& sweep, const HeatmapOptions& options) {
+  const DecodedImage image = decode_png(renderer().heatmap_png(sweep, options));
+  const HeatmapGrid grid = make_grid(sweep);
+  const HeatmapLayout layout = layout_heatmap(grid, options.metric, options.width, options.height);
+  ASSERT_EQ(image.width, layout.width);
+  ASSERT_EQ(image.height, layout.height);
+  const MetricScale scale = metric_scale(grid, options.metric);
+  for (int p = 0; p < layout.panels; ++p) {
+    for (int i = 0; i < layout.rows; ++i) {
+      for (int j = 0; j < layout.columns; ++j) {
+        const SweepCell& c = *grid.at(p, i, j);
+        const auto value = metric_value(c, options.metric);
+        const Color expected = c.status != Status::converged ? status_color(c.status)
+                               : value                        ? viridis(scale.position(*value))
+                                                              : kNoValueColor;
+        const Point center = layout.cell_center(p, i, j);
+        const Color got = image.at(static_cast<int>(center.x), static_cast<int>(center.y));
+        EXPECT_TRUE(testing::near(got, expected, 2))
+            << "panel " << p << " n " << c.n << " h " << c.h << ": got " << int(got.r) << "," << int(got.g) << ","
+            << int(got.b) << " expected " << int(expected.r) << "," << int(expected.g) << "," << int(expected.b);
+      }
+    }
+  }
+}
+
+TEST(Heatmap, GridOrdersMethodsAsGivenAndNAndHAscending) {
+  const SweepResult sweep = tiny_sweep();
+  const HeatmapGrid grid = make_grid(sweep);
+  ASSERT_EQ(grid.methods.size(), 2u);
+  EXPECT_EQ(grid.methods[0], Method::newton_group);
+  EXPECT_EQ(grid.n, (std::vector<int>{2, 3}));
+  EXPECT_EQ(grid.h, (std::vector<double>{0.5, 1.0, 2.0}));
+  EXPECT_EQ(grid.at(1, 0, 2)->status, Status::diverged);
+}
+
+TEST(Heatmap, CellCentersAreLaidOutLog2HRightwardNUpward) {
+  const HeatmapLayout layout = layout_heatmap(make_grid(tiny_sweep()), HeatmapMetric::iterations, 0, 0);
+  EXPECT_LT(layout.cell_center(0, 0, 0).x, layout.cell_center(0, 0, 1).x);
+  EXPECT_GT(layout.cell_center(0, 0, 0).y, layout.cell_center(0, 1, 0).y);  // larger N is higher
+  EXPECT_LT(layout.cell_center(0, 0, 2).x, layout.cell_center(1, 0, 0).x);  // panels side by side
+}
+
+TEST(Heatmap, IterationCellsMatchTheColormap) {
+  expect_cells_colored(tiny_sweep(), {0, 0, HeatmapMetric::iterations});
+}
+
+TEST(Heatmap, RateCellsMatchTheColormapAndMissingRatesAreGray) {
+  expect_cells_colored(tiny_sweep(), {0, 0, HeatmapMetric::rate});
+}
+
+TEST(Heatmap, ResidualCellsMatchTheColormapAtAGivenSize) {
+  expect_cells_colored(tiny_sweep(), {512, 512, HeatmapMetric::residual});
+}
+
+TEST(Heatmap, IterationScaleSpansTheConvergedCells) {
+  const MetricScale scale = metric_scale(make_grid(tiny_sweep()), HeatmapMetric::iterations);
+  EXPECT_EQ(scale.lo, 3);
+  EXPECT_EQ(scale.hi, 7);
+}
+
+TEST(Heatmap, LabelsLegendAndColorbarAreDrawn) {
+  const SweepResult sweep = tiny_sweep();
+  const HeatmapOptions options{0, 0, HeatmapMetric::iterations};
+  const DecodedImage image = decode_png(renderer().heatmap_png(sweep, options));
+  const HeatmapLayout l = layout_heatmap(make_grid(sweep), options.metric, 0, 0);
+  const int panels_bottom = l.top + l.panel_height();
+  // Legend band below the axis labels, title band above the panels, N labels left, colorbar numbers right.
+  EXPECT_GT(image.count_not(kWhite, 0, l.legend_y, l.width, l.height), 200);
+  EXPECT_GT(image.count_not(kWhite, l.left, 0, l.panel_x(1), l.top - 2), 50);
+  EXPECT_GT(image.count_not(kWhite, 0, l.top, l.left - 2, panels_bottom), 20);
+  EXPECT_GT(image.count_not(kWhite, l.colorbar_x + l.colorbar_width + 2, l.top, l.width, panels_bottom), 20);
+  EXPECT_GT(image.count_not(kWhite, l.left, panels_bottom + 2, l.panel_x(1), l.legend_y), 50);  // log2 h labels
+  // Each failure class' legend swatch shows its color.
+  for (std::size_t k = 0; k < l.legend.size(); ++k) {
+    const int x = l.legend_x + static_cast<int>(k % l.legend_columns) * l.legend_column_width + 6;
+    const int y = l.legend_y + static_cast<int>(k / l.legend_columns) * l.legend_row_height + 6;
+    EXPECT_EQ(image.at(x, y), l.legend[k].color) << l.legend[k].label;
+  }
+}
+
+TEST(Heatmap, MetricNamesParse) {
+  EXPECT_EQ(heatmap_metric_from_string("iterations"), HeatmapMetric::iterations);
+  EXPECT_EQ(heatmap_metric_from_string("rate"), HeatmapMetric::rate);
+  EXPECT_EQ(heatmap_metric_from_string("residual"), HeatmapMetric::residual);
+  EXPECT_FALSE(heatmap_metric_from_string("Rate"));
+}
+
+TEST(Heatmap, EmptySweepIsRejected) {
+  EXPECT_THROW(renderer().heatmap_png(SweepResult{}, HeatmapOptions{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lienewton::render
