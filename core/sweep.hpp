@@ -44,6 +44,9 @@ void validate(const SweepRequest& request);
 
 // Called (serialised, from worker threads) as each cell finishes; return false to cancel the rest.
 using CellCallback = std::function<bool(const SweepCell&)>;
-SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {});
+// should_continue (optional, thread-safe) is polled at every iteration of every cell: returning false
+// cancels the sweep within one iteration (a client that left, a deadline). Cancelled cells are omitted.
+SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {},
+                  const std::function<bool()>& should_continue = {});
 
 }  // namespace lienewton

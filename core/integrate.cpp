@@ -1,0 +1,143 @@
+#include "integrate.hpp"
+
+#include <cmath>
+
+#include "cpu_clock.hpp"
+#include "newton.hpp"
+#include "reference_solution.hpp"
+#include "start_point.hpp"
+#include "validation.hpp"
+
+namespace lienewton {
+namespace {
+
+constexpr double kMaxTEnd = 100.0;
+constexpr double kMaxSteps = 1e5;
+
+// A diagonally implicit Crouch-Grossman method (section 6): stage i solves
+//   Y_i = Z_i exp(h a_ii g(Y_i)),  Z_i = y_k exp(h a_i1 g(Y_1)) ... exp(h a_i,i-1 g(Y_i-1)),
+// and y_k+1 = y_k exp(h b_1 g(Y_1)) ... exp(h b_s g(Y_s)).
+struct DirkTableau {
+  int stages;
+  double a[2][2];
+  double b[2];
+};
+
+// Implicit Euler (1.1): one stage, a = b = 1.
+constexpr DirkTableau kImplicitEuler{1, {{1.0, 0.0}, {0.0, 0.0}}, {1.0, 0.0}};
+// dirk-cg2: the L-stable SDIRK with gamma = 1 - 1/sqrt(2), c = (gamma, 1), b = last row of A (stiffly
+// accurate, so y_k+1 = Y_2). Order 2: sum b = 1 and sum b_i c_i = (1-gamma) gamma + gamma = 1/2; for
+// Crouch-Grossman methods the order conditions up to order 2 are the classical ones (the first conditions
+// specific to the non-commutative setting appear at order 3, Owren & Marthinsen 1999).
+constexpr double kGamma = 1.0 - 0.70710678118654752440;
+constexpr DirkTableau kDirkCg2{2, {{kGamma, 0.0}, {1.0 - kGamma, kGamma}}, {1.0 - kGamma, kGamma}};
+
+const DirkTableau& tableau_of(Integrator integrator) {
+  return integrator == Integrator::dirk_cg2 ? kDirkCg2 : kImplicitEuler;
+}
+
+Status worse(Status a, Status b) { return a == Status::converged ? b : a; }
+
+template <class G>
+IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const Eigen::MatrixXd& y0,
+                             const StepCallback& on_step) {
+  using Element = typename G::Element;
+  using Vector = typename G::Vector;
+  const auto field = make_field(group, req.problem, req.rigid_body);
+  const DirkTableau& tab = tableau_of(req.integrator);
+  const SolverOptions opt{req.tol, req.max_iterations, false, req.differential};
+  const int steps = static_cast<int>(std::llround(req.t_end / req.h));
+  const double h = req.t_end / steps;
+  const RigidBody* body = req.problem == ProblemKind::rigid_body
+                              ? &static_cast<const VectorFieldOf<G, RigidBody>&>(*field).problem()
+                              : nullptr;
+  auto energy = [&](const Element& y) { return body ? body->energy(Eigen::Matrix3d(y)) : 0.0; };
+
+  IntegrateResult res;
+  const double cpu_start = thread_cpu_seconds();
+  Element y = y0;
+  const double e0 = energy(y);
+  double drift = 0.0;
+  const int frame_every = req.frames > 0 ? std::max(1, steps / req.frames) : 0;
+  if (frame_every) {
+    res.frames.push_back(y);
+    res.frame_times.push_back(0.0);
+  }
+  res.steps.reserve(static_cast<std::size_t>(steps));
+  for (int k = 1; k <= steps; ++k) {
+    StepRecord rec{k, k * h, 0, 0.0, Status::converged, 0.0};
+    Vector hg[2];
+    for (int i = 0; i < tab.stages; ++i) {
+      Element z = y;
+      for (int j = 0; j < i; ++j) z = group.compose(z, group.exp(tab.a[i][j] * hg[j]));
+      const auto eq = Equation<G>::implicit_euler(group, z, h * tab.a[i][i], *field);
+      const SolveResult stage = run_method(req.method, eq, opt, {});
+      rec.iterations += stage.iterations;
+      rec.residual = std::max(rec.residual, stage.residual);
+      rec.status = worse(rec.status, stage.status);
+      if (stage.status != Status::converged) {
+        res.reason = "step " + std::to_string(k) + ", stage " + std::to_string(i + 1) + ": " + stage.reason;
+        break;
+      }
+      hg[i] = h * field->g(Element(stage.y));
+    }
+    if (rec.status == Status::converged) {
+      for (int i = 0; i < tab.stages; ++i) y = group.compose(y, group.exp(tab.b[i] * hg[i]));
+    }
+    rec.energy = energy(y);
+    if (body) drift = std::max(drift, std::abs(rec.energy - e0) / e0);
+    res.orthogonality_error = std::max(res.orthogonality_error, orthogonality_error(y));
+    res.steps.push_back(rec);
+    if (frame_every && (k % frame_every == 0 || k == steps)) {
+      res.frames.push_back(y);
+      res.frame_times.push_back(k * h);
+    }
+    const bool keep_going = !on_step || on_step(rec);
+    if (rec.status != Status::converged) {
+      res.status = rec.status;
+      break;
+    }
+    if (!keep_going) {
+      res.status = Status::cancelled;
+      res.reason = "cancelled by the caller after step " + std::to_string(k);
+      break;
+    }
+  }
+  res.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  res.y = y;
+  if (body) res.energy_drift = drift;
+  if (res.status == Status::converged) res.reason = "every stage of " + std::to_string(steps) + " steps converged";
+  return res;
+}
+
+}  // namespace
+
+void validate(const IntegrateRequest& req) {
+  validation::check_n("n", req.n);
+  validation::check_h("h", req.h);
+  if (!std::isfinite(req.t_end) || req.t_end <= 0.0 || req.t_end > kMaxTEnd)
+    validation::invalid("t_end", "t_end must be a finite number in (0, 100]");
+  if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
+  if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
+  validation::check_tol(req.tol);
+  validation::check_max_iterations(req.max_iterations);
+  validation::check_problem_dimension(req.problem, req.n);
+  validation::check_rigid_body(req.rigid_body);
+  validation::check_start_point(req.z, req.n);
+  if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
+}
+
+IntegrateResult integrate(const IntegrateRequest& req, const StepCallback& on_step) {
+  validate(req);
+  const Eigen::MatrixXd y0 = req.z ? *req.z : start_point(req.n, req.seed);
+  IntegrateResult res = req.n == 3 ? integrate_on(SO3Group{}, req, y0, on_step)
+                                   : integrate_on(SONGroup(req.n), req, y0, on_step);
+  if (req.reference && res.status == Status::converged) {
+    const double start = thread_cpu_seconds();
+    res.global_error = (res.y - reference_solution(req.problem, req.rigid_body, y0, req.t_end)).norm();
+    res.reference_seconds = thread_cpu_seconds() - start;
+  }
+  return res;
+}
+
+}  // namespace lienewton

@@ -1,0 +1,102 @@
+#include "sweep.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <atomic>
+#include <mutex>
+
+#include "parallel_for.hpp"
+#include "start_point.hpp"
+#include "validation.hpp"
+
+namespace lienewton {
+namespace {
+
+constexpr std::size_t kMaxCells = 100000;
+
+std::vector<int> paper_dimensions() {
+  std::vector<int> n;
+  for (int i = 2; i <= 15; ++i) n.push_back(i);
+  return n;
+}
+std::vector<double> paper_step_sizes() {
+  std::vector<double> h;
+  for (int e = -10; e <= 10; ++e) h.push_back(std::ldexp(1.0, e));
+  return h;
+}
+
+}  // namespace
+
+SweepRequest with_defaults(SweepRequest req) {
+  if (req.n.empty()) req.n = paper_dimensions();
+  if (req.h.empty()) req.h = paper_step_sizes();
+  return req;
+}
+
+void validate(const SweepRequest& req) {
+  if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
+  for (int n : req.n) {
+    validation::check_n("n", n);
+    validation::check_problem_dimension(req.problem, n);
+  }
+  for (double h : req.h) validation::check_h("h", h);
+  validation::check_tol(req.tol);
+  validation::check_max_iterations(req.max_iterations);
+  validation::check_rigid_body(req.rigid_body);
+  if (req.methods.size() * req.n.size() * req.h.size() > kMaxCells)
+    validation::invalid("h", "the grid has more than " + std::to_string(kMaxCells) + " cells");
+  if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
+}
+
+SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
+                  const std::function<bool()>& should_continue) {
+  const SweepRequest req = with_defaults(request);
+  validate(req);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Eigen::MatrixXd> start_points;  // one z per N, shared by all methods and h: the paper's setup
+  for (int n : req.n) start_points.push_back(start_point(n, req.seed));
+
+  const std::size_t per_method = req.n.size() * req.h.size();
+  SweepResult result;
+  result.cells.resize(req.methods.size() * per_method);
+  std::vector<char> done(result.cells.size(), 0);
+  std::mutex callback_mutex;
+  std::atomic<bool> cancelled{false};
+  // Polled every iteration of every cell, so a cancelled sweep stops within one iteration.
+  const TraceCallback poll = [&](const TraceRecord&) {
+    if (!cancelled && should_continue && !should_continue()) cancelled = true;
+    return !cancelled.load();
+  };
+  parallel_for(static_cast<int>(result.cells.size()), req.threads, [&](int index) {
+    const std::size_t i = static_cast<std::size_t>(index);
+    const std::size_t m = i / per_method, ni = (i % per_method) / req.h.size(), hi = i % req.h.size();
+    SolveRequest s;
+    s.problem = req.problem;
+    s.n = req.n[ni];
+    s.h = req.h[hi];
+    s.method = req.methods[m];
+    s.differential = req.differential;
+    s.tol = req.tol;
+    s.max_iterations = req.max_iterations;
+    s.z = start_points[ni];
+    s.rigid_body = req.rigid_body;
+    const SolveResult r = solve(s, poll);
+    if (r.status == Status::cancelled) return false;
+    SweepCell& cell = result.cells[i];
+    cell = {s.method, s.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
+    done[i] = 1;
+    if (!on_cell) return true;
+    std::lock_guard lock(callback_mutex);
+    if (!on_cell(cell)) cancelled = true;
+    return !cancelled.load();
+  });
+  // A cancelled sweep returns the cells that finished, still in grid order.
+  std::vector<SweepCell> finished;
+  for (std::size_t i = 0; i < result.cells.size(); ++i)
+    if (done[i]) finished.push_back(std::move(result.cells[i]));
+  result.cells = std::move(finished);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace lienewton

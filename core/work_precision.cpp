@@ -1,0 +1,87 @@
+#include "work_precision.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include "cpu_clock.hpp"
+#include "parallel_for.hpp"
+#include "reference_solution.hpp"
+#include "start_point.hpp"
+#include "validation.hpp"
+
+namespace lienewton {
+namespace {
+
+constexpr std::size_t kMaxRuns = 200;
+
+std::vector<double> default_step_sizes() {
+  std::vector<double> h;
+  for (int e = -2; e >= -7; --e) h.push_back(std::ldexp(1.0, e));
+  return h;
+}
+
+IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, double h) {
+  IntegrateRequest r;
+  r.problem = req.problem;
+  r.n = req.n;
+  r.h = h;
+  r.t_end = req.t_end;
+  r.integrator = c.integrator;
+  r.method = c.method;
+  r.differential = c.differential;
+  r.tol = req.tol;
+  r.max_iterations = req.max_iterations;
+  r.seed = req.seed;
+  r.rigid_body = req.rigid_body;
+  r.reference = false;
+  return r;
+}
+
+}  // namespace
+
+void validate(const WorkPrecisionRequest& req) {
+  if (req.choices.empty()) validation::invalid("choices", "choices must list at least one choice");
+  const std::vector<double> hs = req.h.empty() ? default_step_sizes() : req.h;
+  if (req.choices.size() * hs.size() > kMaxRuns)
+    validation::invalid("h", "choices x h must be at most " + std::to_string(kMaxRuns) + " runs");
+  for (double h : hs) validate(run_request(req, req.choices.front(), h));
+}
+
+WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {
+  validate(request);
+  WorkPrecisionRequest req = request;
+  if (req.h.empty()) req.h = default_step_sizes();
+  const auto start = std::chrono::steady_clock::now();
+  WorkPrecisionResult res;
+  const Eigen::MatrixXd y0 = start_point(req.n, req.seed);
+  const double ref_start = thread_cpu_seconds();
+  const Eigen::MatrixXd y_ref = reference_solution(req.problem, req.rigid_body, y0, req.t_end);
+  res.reference_seconds = thread_cpu_seconds() - ref_start;
+
+  res.series.resize(req.choices.size());
+  for (std::size_t c = 0; c < req.choices.size(); ++c) {
+    res.series[c].choice = req.choices[c];
+    res.series[c].points.resize(req.h.size());
+  }
+  const int runs = static_cast<int>(req.choices.size() * req.h.size());
+  std::vector<int> remaining(req.choices.size(), static_cast<int>(req.h.size()));
+  std::mutex mutex;
+  parallel_for(runs, 0, [&](int index) {
+    const std::size_t c = static_cast<std::size_t>(index) / req.h.size(), k = static_cast<std::size_t>(index) % req.h.size();
+    const IntegrateResult run = integrate(run_request(req, req.choices[c], req.h[k]));
+    WorkPrecisionPoint& p = res.series[c].points[k];
+    p.h = req.h[k];
+    p.cpu_seconds = run.cpu_seconds;
+    p.status = run.status;
+    p.error = (run.y - y_ref).norm();
+    for (const auto& s : run.steps) p.iterations += s.iterations;
+    std::lock_guard lock(mutex);
+    if (--remaining[c] == 0 && on_series) return on_series(res.series[c]);
+    return true;
+  });
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return res;
+}
+
+}  // namespace lienewton
