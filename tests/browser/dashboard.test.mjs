@@ -1,0 +1,175 @@
+// End-to-end test of the dashboard against the real server:
+//   node tests/browser/dashboard.test.mjs <server-binary> <web-root> <screenshot-dir>
+// Each check compares what the page shows with what the API answers for the same request.
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { after, before, test } from 'node:test';
+import { launchChromium, loadPlaywright, startServer, stopAll, watchdog } from './harness.mjs';
+import { staleVendored } from './vendor.mjs';
+
+const [binary, webRoot, shots] = process.argv.slice(2).map((a) => a && resolve(a));
+if (!binary || !webRoot || !shots) {
+  console.error('usage: node dashboard.test.mjs <server-binary> <web-root> <screenshot-dir>');
+  process.exit(2);
+}
+watchdog(110_000);
+mkdirSync(shots, { recursive: true });
+
+let server; let page; let base;
+const consoleErrors = [];
+const external = [];
+
+before(async () => {
+  const { chromium } = await loadPlaywright();
+  server = await startServer(binary, webRoot);
+  base = server.base;
+  const browser = await launchChromium(chromium);
+  page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
+  page.setDefaultTimeout(20_000);
+  page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
+  page.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
+  page.on('request', (r) => !/^(blob|data):/.test(r.url()) && !r.url().startsWith(base) && external.push(r.url()));
+});
+after(stopAll);
+
+const api = async (path, body) => {
+  const res = await fetch(base + path, { method: 'POST', headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify(body) });
+  return { status: res.status, body: await res.json() };
+};
+const shot = (name, fullPage = true) => page.screenshot({ path: join(shots, `${name}.png`), fullPage });
+const tab = (name) => page.getByRole('tab', { name }).click();
+const text = (selector) => page.locator(selector).innerText();
+
+test('vendored uPlot matches the pinned npm package', () => {
+  assert.deepEqual(staleVendored(), [], 'run `npm run vendor`');
+});
+
+test('page loads with no console errors and nothing fetched from outside', async () => {
+  await page.goto(base + '/');
+  await page.locator('#server-state[data-ok="true"]').waitFor();
+  assert.deepEqual(consoleErrors, []);
+  assert.deepEqual(external, []);
+  // Tabs are keyboard operable: ArrowRight moves to the next panel.
+  await page.getByRole('tab', { name: 'Solve' }).focus();
+  await page.keyboard.press('ArrowRight');
+  assert.equal(await page.getByRole('tab', { name: 'Compare' }).getAttribute('aria-selected'), 'true');
+  assert.equal(await page.locator('#compare').isVisible(), true);
+  await tab('Solve');
+});
+
+test('a solve streams its trace; the chart ends with iterations + 1 points', async () => {
+  const panel = page.locator('#solve');
+  await panel.getByLabel('Method').selectOption('fixed-point');
+  const response = page.waitForResponse((r) => r.url().endsWith('/api/v1/solve'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const res = await response;
+  assert.match(res.headers()['content-type'], /application\/x-ndjson/);
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const result = lines.at(-1);
+  assert.equal(result.type, 'result');
+  assert.equal(lines.filter((l) => l.type === 'iteration').length, result.iterations + 1);
+  await panel.locator('[data-result="iterations"]').waitFor();
+  assert.equal(await page.locator('#solve-chart').getAttribute('data-points'), String(result.iterations + 1));
+  assert.equal(await text('#solve [data-result="iterations"]'), String(result.iterations));
+  assert.equal(await panel.locator('[data-result="status"] .badge').getAttribute('data-status'), result.status);
+  assert.equal(Number(await text('#solve [data-result="residual"]')).toPrecision(3), result.residual.toPrecision(3));
+  // N = 3: the rotation frames of the iterates are shown.
+  await page.waitForFunction(() => document.querySelector('#solve-frames')?.naturalWidth > 0);
+  await shot('solve');
+});
+
+test('a bad field shows the server message next to that field', async () => {
+  const panel = page.locator('#solve');
+  await panel.getByLabel('Method').selectOption('newton-group');
+  await panel.getByLabel('Step size h').fill('-1');
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const expected = await api('/api/v1/solve', { problem: 'paper-linear', n: 3, h: -1, method: 'newton-group',
+    differential: 'exact', tol: 1e-13, max_iterations: 100, seed: 1 });
+  assert.ok([400, 422].includes(expected.status));
+  assert.equal(expected.body.error.field, 'h');
+  const slot = panel.locator('.field[data-field="h"] .field-error');
+  await slot.filter({ hasText: /\S/ }).waitFor();
+  assert.equal(await slot.innerText(), expected.body.error.message);
+  assert.equal(await panel.getByLabel('Step size h').getAttribute('aria-invalid'), 'true');
+  await shot('solve-error', false);
+  await panel.getByLabel('Step size h').fill('0.5');
+});
+
+test('compare draws one residual curve per ticked method', async () => {
+  await tab('Compare');
+  const panel = page.locator('#compare');
+  const ticked = await panel.locator('input[name="runs"]:checked').count();
+  await panel.getByRole('button', { name: 'Run' }).click();
+  await panel.locator('#compare-table tbody tr').nth(ticked - 1).waitFor();
+  assert.equal(await page.locator('#compare-chart').getAttribute('data-series'), String(ticked));
+  await shot('compare');
+});
+
+test('a sweep renders the heatmap and hovering a cell shows that cell', async () => {
+  await tab('Stability map');
+  const panel = page.locator('#stability');
+  await panel.getByLabel('Fixed point (1.2)').uncheck();
+  for (const [name, v] of [['n_lo', '2'], ['n_hi', '5'], ['k_lo', '-3'], ['k_hi', '3']]) {
+    await panel.locator(`input[name="${name}"]`).fill(v);
+  }
+  const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/sweep'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const request = JSON.parse((await sent).postData());
+  await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
+  const { body: sweep } = await api('/api/v1/sweep', request);
+  assert.equal(sweep.cells.length, 2 * 4 * 7);
+  assert.equal(await panel.locator('.cell:not(.pending)').count(), sweep.cells.length);
+  for (const cell of sweep.cells) {
+    const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
+    assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
+  }
+  for (const cell of [sweep.cells[0], sweep.cells[17], sweep.cells.at(-1)]) {
+    await panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`).hover();
+    const detail = (key) => text(`#cell-details [data-detail="${key}"]`);
+    assert.equal(await detail('method'), cell.method);
+    assert.equal(Number(await detail('n')), cell.n);
+    assert.equal(parseFloat(await detail('h')), cell.h);
+    assert.equal(await panel.locator('#cell-details .badge').getAttribute('data-status'), cell.status);
+    assert.equal(Number(await detail('iterations')), cell.iterations);
+    assert.equal(await detail('rate'), cell.rate === null ? '\u2014' : cell.rate.toFixed(3));
+    assert.equal(Number(await detail('residual')).toPrecision(3), cell.residual.toPrecision(3));
+  }
+  await shot('stability');
+  // Click opens the cell's solve in the Solve panel.
+  const cell = sweep.cells[17];
+  await panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`).click();
+  assert.equal(await page.getByRole('tab', { name: 'Solve' }).getAttribute('aria-selected'), 'true');
+  await page.locator('#solve [data-result="iterations"]').waitFor();
+  assert.equal(Number(await page.locator('#solve input[name="h"]').inputValue()), cell.h);
+  assert.equal(Number(await page.locator('#solve input[name="n"]').inputValue()), cell.n);
+});
+
+test('the work-precision chart has one series per ticked choice', async () => {
+  await tab('Speed vs accuracy');
+  const panel = page.locator('#speed');
+  await panel.locator('input[name="k_lo"]').fill('-5');
+  await panel.locator('input[name="energy_h"]').fill('0.125');
+  const ticked = await panel.locator('input[name="choices"]:checked').count();
+  assert.ok(ticked >= 2);
+  const response = page.waitForResponse((r) => r.url().endsWith('/api/v1/work-precision'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const wp = await (await response).json();
+  assert.equal(wp.series.length, ticked);
+  await panel.locator('#energy-table tbody tr').nth(ticked - 1).waitFor({ timeout: 40_000 });
+  assert.equal(await page.locator('#work-precision-chart').getAttribute('data-series'), String(ticked));
+  assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));
+  await shot('speed');
+});
+
+test('phone-sized layout and no console errors beyond the deliberate bad request', async () => {
+  await page.setViewportSize({ width: 390, height: 844 });
+  await tab('Solve');
+  await shot('solve-phone');
+  await tab('Stability map');
+  await shot('stability-phone');
+  const unexpected = consoleErrors.filter((m) => !/status of 4(00|22)/.test(m));
+  assert.deepEqual(unexpected, []);
+  assert.deepEqual(external, []);
+});

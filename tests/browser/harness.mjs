@@ -1,0 +1,75 @@
+// Starts the real lienewton server on a free loopback port and a headless Debian Chromium driven by
+// playwright-core (no browser download). Everything started here is stopped by stopAll(), also on failure.
+import { spawn } from 'node:child_process';
+import { existsSync } from 'node:fs';
+import net from 'node:net';
+
+const started = [];
+
+export async function loadPlaywright() {
+  try {
+    return await import('playwright-core');
+  } catch (err) {
+    throw new Error(`playwright-core is not installed (${err.code ?? err.message}). Run \`npm ci\` at the ` +
+      'repository root (scripts/deps.sh test does it).');
+  }
+}
+
+// The OS picks a free port for a throwaway listener; the server gets that number.
+function freePort() {
+  return new Promise((resolve, reject) => {
+    const probe = net.createServer();
+    probe.once('error', reject);
+    probe.listen(0, '127.0.0.1', () => {
+      const { port } = probe.address();
+      probe.close(() => resolve(port));
+    });
+  });
+}
+
+export async function startServer(binary, webRoot, { timeoutMs = 20000 } = {}) {
+  if (!existsSync(binary)) throw new Error(`server binary not found: ${binary}`);
+  const port = await freePort();
+  const child = spawn(binary, ['--host', '127.0.0.1', '--port', String(port), '--web-root', webRoot, '--threads', '2'],
+    { stdio: ['ignore', 'pipe', 'pipe'] });
+  started.push(() => child.exitCode === null && child.kill('SIGKILL'));
+  process.on('exit', () => child.exitCode === null && child.kill('SIGKILL'));
+  let output = '';
+  child.stdout.on('data', (d) => { output += d; });
+  child.stderr.on('data', (d) => { output += d; });
+  const base = `http://127.0.0.1:${port}`;
+  const deadline = Date.now() + timeoutMs;
+  while (Date.now() < deadline) {
+    if (child.exitCode !== null) throw new Error(`server exited with ${child.exitCode}:\n${output}`);
+    try {
+      if ((await fetch(`${base}/livez`)).ok) return { base, child, output: () => output };
+    } catch { /* not listening yet */ }
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  throw new Error(`server did not answer /livez within ${timeoutMs} ms:\n${output}`);
+}
+
+export async function launchChromium(chromium) {
+  const executablePath = ['/usr/lib/chromium/chromium', '/usr/bin/chromium'].find(existsSync);
+  if (!executablePath) throw new Error('Debian chromium is not installed (apt-get install chromium).');
+  const browser = await chromium.launch({ executablePath, args: ['--no-sandbox', '--disable-gpu',
+    '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync'] });
+  started.push(() => browser.close());
+  return browser;
+}
+
+export async function stopAll() {
+  while (started.length) {
+    try { await started.pop()(); } catch { /* already gone */ }
+  }
+}
+
+// A hard stop if anything hangs, so a CTest run never leaves a server behind.
+export function watchdog(ms) {
+  setTimeout(async () => {
+    console.error(`browser test: exceeded ${ms} ms, stopping`);
+    await stopAll();
+    process.exit(1);
+  }, ms).unref();
+  for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, async () => { await stopAll(); process.exit(1); });
+}

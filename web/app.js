@@ -1,0 +1,52 @@
+// Entry point: builds the four panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
+// Home/End) and the URL hash, so a panel can be linked to and survives a reload.
+import { createComparePanel } from './compare.js';
+import { createSolvePanel } from './solve.js';
+import { createSpeedPanel } from './speed.js';
+import { createStabilityPanel } from './stability.js';
+
+const tabs = [...document.querySelectorAll('[role="tab"]')];
+
+function select(tab, focus = true) {
+  for (const t of tabs) {
+    const on = t === tab;
+    t.setAttribute('aria-selected', String(on));
+    t.tabIndex = on ? 0 : -1;
+    document.getElementById(t.getAttribute('aria-controls')).hidden = !on;
+  }
+  if (focus) tab.focus();
+  history.replaceState(null, '', `#${tab.getAttribute('aria-controls')}`);
+}
+
+document.querySelector('[role="tablist"]').addEventListener('keydown', (e) => {
+  const i = tabs.indexOf(document.activeElement);
+  if (i < 0) return;
+  const next = { ArrowRight: i + 1, ArrowLeft: i - 1, Home: 0, End: tabs.length - 1 }[e.key];
+  if (next === undefined) return;
+  e.preventDefault();
+  select(tabs[(next + tabs.length) % tabs.length]);
+});
+for (const t of tabs) t.addEventListener('click', () => select(t));
+
+const solve = createSolvePanel(document.querySelector('#solve .panel-body'));
+createComparePanel(document.querySelector('#compare .panel-body'));
+createStabilityPanel(document.querySelector('#stability .panel-body'), {
+  openSolve(request) {
+    select(tabs[0]);
+    solve.open(request);
+  },
+});
+createSpeedPanel(document.querySelector('#speed .panel-body'));
+
+const fromHash = tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
+select(fromHash ?? tabs[0], false);
+
+// A small liveness light in the header: the dashboard is static, the numbers come from the service.
+const light = document.getElementById('server-state');
+fetch('/readyz').then((r) => {
+  light.textContent = r.ok ? 'service ready' : `service not ready (HTTP ${r.status})`;
+  light.dataset.ok = String(r.ok);
+}).catch(() => {
+  light.textContent = 'service unreachable';
+  light.dataset.ok = 'false';
+});

@@ -1,0 +1,70 @@
+// Compare panel: one problem solved by several method/differential pairs, one after the other (the server
+// caps concurrent streams), with every residual curve on one chart and a results table.
+import { ApiError, stream } from './api.js';
+import { residualChart } from './chart.js';
+import { el } from './dom.js';
+import { actions, choiceMatrix } from './fields.js';
+import { checkedValues, runner } from './form.js';
+import { DIFFERENTIALS, fmtExp, fmtRate, fmtSeconds, label } from './labels.js';
+import { limitFields, problemFields, readCommon } from './request.js';
+import { statusBadge } from './summary.js';
+
+const SHORT_DIFF = { 'finite-difference': 'FD', 'dexpinv-0': 'dexp\u207b\u00b9 order 0', 'dexpinv-1': 'dexp\u207b\u00b9 order 1', exact: 'exact' };
+const ROWS = [{ key: 'fixed-point', text: 'Fixed point', single: true },
+  { key: 'newton-group', text: 'Newton group' }, { key: 'newton-algebra', text: 'Newton algebra' }];
+
+function runLabel(method, differential) {
+  const row = ROWS.find((r) => r.key === method);
+  return row.single ? row.text : `${row.text} \u00b7 ${label(DIFFERENTIALS, differential)}`;
+}
+
+export function createComparePanel(root) {
+  const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Compare request' },
+    problemFields(),
+    choiceMatrix('runs', 'Methods and differentials', ROWS, DIFFERENTIALS.map(([d]) => [d, SHORT_DIFF[d]]),
+      ['fixed-point|exact', 'newton-group|exact', 'newton-algebra|exact', 'newton-group|finite-difference'], runLabel),
+    limitFields(),
+    actions());
+  const live = el('p', { class: 'live', role: 'status' }, 'Tick the methods to compare and press Run.');
+  const chartBox = el('div', { class: 'chart', id: 'compare-chart' });
+  const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
+  root.append(form, el('div', { class: 'output' }, live, chartBox, tableBox));
+  const start = runner(form);
+
+  form.addEventListener('submit', async (e) => {
+    e.preventDefault();
+    const picks = checkedValues(form, 'runs').map((v) => v.split('|'));
+    const labels = picks.map(([m, d]) => runLabel(m, d));
+    const columns = picks.map(() => []);
+    const rows = [];
+    tableBox.replaceChildren();
+    await start(async (signal, progress) => {
+      if (!picks.length) throw new ApiError('Tick at least one method.', { field: 'runs' });
+      const chart = residualChart(chartBox, labels);
+      progress.max = picks.length;
+      for (const [i, [method, differential]] of picks.entries()) {
+        const request = { ...readCommon(form), method, differential, include_iterates: false };
+        live.textContent = `Running ${labels[i]} (${i + 1} of ${picks.length})\u2026`;
+        const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
+          columns[i].push(rec.residual);
+          chart.set(columns);
+        } });
+        chart.set(columns);
+        progress.value = i + 1;
+        rows.push([labels[i], result]);
+        tableBox.replaceChildren(resultsTable(rows));
+      }
+      live.textContent = `Compared ${picks.length} runs.`;
+    });
+  });
+}
+
+function resultsTable(rows) {
+  const head = ['Method', 'Status', 'Why', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time'];
+  return el('table', {},
+    el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
+    el('tbody', {}, rows.map(([name, r]) => el('tr', {},
+      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', {}, r.reason ?? ''),
+      el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
+      el('td', {}, fmtSeconds(r.seconds))))));
+}

@@ -1,0 +1,97 @@
+// Builders for the form fields the panels share. Every field is wrapped in .field[data-field=<API name>]
+// with an error slot, so a server error naming that field lands right under it.
+import { el, uid } from './dom.js';
+import { fillSelect } from './form.js';
+
+export function field(name, labelText, control, hint) {
+  const id = control.id || (control.id = uid(name));
+  const errId = `${id}-error`;
+  const hintId = hint ? `${id}-hint` : null;
+  control.setAttribute('aria-describedby', [errId, hintId].filter(Boolean).join(' '));
+  return el('div', { class: 'field', dataset: { field: name } },
+    el('label', { for: id }, labelText),
+    control,
+    hint ? el('small', { class: 'hint', id: hintId }, hint) : null,
+    el('p', { class: 'field-error', id: errId, 'aria-live': 'polite' }));
+}
+
+export function select(name, labelText, options, value, hint) {
+  const s = el('select', { name });
+  fillSelect(s, options, value);
+  return field(name, labelText, s, hint);
+}
+
+export function number(name, labelText, value, hint) {
+  const input = el('input', { name, type: 'text', inputmode: 'decimal', value: String(value),
+    autocomplete: 'off', spellcheck: 'false', dataset: { type: 'number' } });
+  return field(name, labelText, input, hint);
+}
+
+// h with a log2 slider (2^-10 .. 2^10) bound to a numeric box; the box is what gets sent.
+export function stepSize(value) {
+  const box = el('input', { name: 'h', type: 'text', inputmode: 'decimal', value: String(value),
+    autocomplete: 'off', spellcheck: 'false', dataset: { type: 'number' } });
+  const slider = el('input', { type: 'range', min: -10, max: 10, step: 0.25, value: Math.log2(value),
+    'aria-label': 'log2 of h', class: 'log-slider' });
+  const readout = el('output', { class: 'slider-readout' });
+  const syncReadout = () => { readout.textContent = `log\u2082 h = ${slider.value}`; };
+  slider.addEventListener('input', () => {
+    box.value = String(Number((2 ** Number(slider.value)).toPrecision(6)));
+    syncReadout();
+  });
+  box.addEventListener('input', () => {
+    const h = Number(box.value);
+    if (Number.isFinite(h) && h > 0) slider.value = String(Math.log2(h));
+    syncReadout();
+  });
+  syncReadout();
+  const wrapper = field('h', 'Step size h', box);
+  wrapper.querySelector('label').after(el('div', { class: 'slider-row' }, slider, readout));
+  return wrapper;
+}
+
+export function checkboxes(name, legend, options, checked) {
+  return el('fieldset', { class: 'field checks', dataset: { field: name } },
+    el('legend', {}, legend),
+    options.map(([v, text]) => el('label', { class: 'check' },
+      el('input', { type: 'checkbox', name, value: v, checked: checked.includes(v) }), ' ', text)),
+    el('p', { class: 'field-error', 'aria-live': 'polite' }));
+}
+
+// Two numbers that form one API field (e.g. the N range of a sweep).
+export function range(name, legend, [loName, lo], [hiName, hi], hint) {
+  const box = (n, v, text) => el('label', { class: 'range-end' }, text,
+    el('input', { name: n, type: 'text', inputmode: 'decimal', value: String(v), autocomplete: 'off', dataset: { type: 'number' } }));
+  return el('fieldset', { class: 'field range', dataset: { field: name } },
+    el('legend', {}, legend),
+    el('div', { class: 'range-row' }, box(loName, lo, 'from '), box(hiName, hi, 'to ')),
+    hint ? el('small', { class: 'hint' }, hint) : null,
+    el('p', { class: 'field-error', 'aria-live': 'polite' }));
+}
+
+export function actions() {
+  return el('div', { class: 'actions' },
+    el('button', { type: 'submit', class: 'primary', dataset: { role: 'run' } }, 'Run'),
+    el('button', { type: 'button', dataset: { role: 'cancel' }, disabled: true }, 'Cancel'),
+    el('progress', { hidden: true, 'aria-label': 'progress' }),
+    el('p', { class: 'form-error', role: 'alert' }));
+}
+
+// A table of checkboxes: one row per method (or integrator + method), one column per differential.
+// Rows marked single (fixed point: no differential) get one box sending `${row}|exact`.
+// Each box is labelled in full for screen readers; values are `${row}|${column}`.
+export function choiceMatrix(name, legend, rows, columns, checked, describe) {
+  const box = (v, text) => el('input', { type: 'checkbox', name, value: v, checked: checked.includes(v), 'aria-label': text });
+  const body = rows.map(({ key, text, single }) => el('tr', {},
+    el('th', { scope: 'row' }, text),
+    single
+      ? el('td', { colspan: columns.length, class: 'center' },
+        el('label', {}, box(`${key}|exact`, describe(key, null)), ' no differential'))
+      : columns.map(([c]) => el('td', { class: 'center' }, box(`${key}|${c}`, describe(key, c))))));
+  return el('fieldset', { class: 'field choices', dataset: { field: name } },
+    el('legend', {}, legend),
+    el('div', { class: 'table-wrap' }, el('table', {},
+      el('thead', {}, el('tr', {}, el('th', {}, ''), columns.map(([, t]) => el('th', { scope: 'col' }, t)))),
+      el('tbody', {}, body))),
+    el('p', { class: 'field-error', 'aria-live': 'polite' }));
+}

@@ -1,0 +1,84 @@
+// Form plumbing shared by the panels: reading typed values, showing API errors next to the field they
+// name, and the Run/Cancel/progress cycle of a long request.
+import { ApiError } from './api.js';
+
+export function fillSelect(select, options, value) {
+  select.replaceChildren(...options.map(([v, text]) => new Option(text, v, false, v === value)));
+}
+
+// Numbers are parsed, but text that is not a number is sent as it is: the server then names the field and
+// explains what it expects, so there is one source of truth for validation.
+export function typedValue(input) {
+  const raw = input.value.trim();
+  if (input.dataset.type !== 'number') return raw;
+  const x = raw === '' ? NaN : Number(raw);
+  return Number.isFinite(x) ? x : raw;
+}
+
+export function value(form, name) {
+  return typedValue(form.elements.namedItem(name));
+}
+
+export function checkedValues(form, name) {
+  return [...form.querySelectorAll(`input[name="${name}"]:checked`)].map((i) => i.value);
+}
+
+export function clearErrors(form) {
+  for (const out of form.querySelectorAll('.field-error')) out.textContent = '';
+  for (const el of form.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
+  const general = form.querySelector('.form-error');
+  if (general) general.textContent = '';
+}
+
+// "h", "n[3]", "choices[1].method" -> the field wrapper named by the leading identifier.
+export function showError(form, err) {
+  const name = err instanceof ApiError && err.field ? String(err.field).match(/^[A-Za-z_]+/)?.[0] : null;
+  const wrapper = name && form.querySelector(`.field[data-field="${name}"]`);
+  if (wrapper) {
+    wrapper.querySelector('.field-error').textContent = err.message;
+    const input = wrapper.querySelector('input[name], select[name]');
+    if (input) {
+      input.setAttribute('aria-invalid', 'true');
+      input.focus();
+    }
+    return;
+  }
+  const general = form.querySelector('.form-error');
+  general.textContent = err.message;
+}
+
+// Runs one request at a time per form. The Cancel button aborts the fetch; the server notices the closed
+// connection and stops computing.
+export function runner(form) {
+  const run = form.querySelector('button[data-role="run"]');
+  const cancel = form.querySelector('button[data-role="cancel"]');
+  const progress = form.querySelector('progress');
+  let controller = null;
+  cancel.addEventListener('click', () => controller?.abort());
+  return async function start(task) {
+    controller?.abort();
+    const mine = (controller = new AbortController());
+    clearErrors(form);
+    run.disabled = true;
+    cancel.disabled = false;
+    progress.hidden = false;
+    progress.removeAttribute('value');
+    form.setAttribute('aria-busy', 'true');
+    try {
+      await task(mine.signal, progress);
+      return true;
+    } catch (err) {
+      if (err.name === 'AbortError') showError(form, new Error('Cancelled.'));
+      else showError(form, err);
+      return false;
+    } finally {
+      if (controller === mine) {
+        controller = null;
+        run.disabled = false;
+        cancel.disabled = true;
+        progress.hidden = true;
+        form.removeAttribute('aria-busy');
+      }
+    }
+  };
+}

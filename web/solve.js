@@ -1,0 +1,92 @@
+// Solve panel: one solve, streamed iteration by iteration into a log-residual chart, then the result,
+// the rotation frames of the iterates (N = 3) and the full trace as a table.
+import { postImage, stream } from './api.js';
+import { residualChart } from './chart.js';
+import { el } from './dom.js';
+import { actions, select } from './fields.js';
+import { runner, value } from './form.js';
+import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from './labels.js';
+import { DEFAULTS, fill, limitFields, problemFields, readCommon } from './request.js';
+import { resultList } from './summary.js';
+
+export function createSolvePanel(root) {
+  const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Solve request' },
+    problemFields(),
+    select('method', 'Method', METHODS, DEFAULTS.method),
+    select('differential', 'Differential', DIFFERENTIALS, DEFAULTS.differential,
+      'Ignored by the fixed-point method'),
+    limitFields(),
+    actions());
+  const live = el('p', { class: 'live', role: 'status' }, 'Press Run to solve y = z exp(h g(y)).');
+  const chartBox = el('div', { class: 'chart', id: 'solve-chart' });
+  const summary = el('div', { class: 'result', id: 'solve-result' });
+  const frames = el('figure', { class: 'frames', hidden: true },
+    el('img', { id: 'solve-frames', alt: 'Rotation frames of the iterates y\u2099' }),
+    el('figcaption', {}, 'Iterates y\u2099 as rotated frames (server-rendered PNG).'));
+  const table = el('details', { class: 'trace' }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
+  root.append(form, el('div', { class: 'output' }, live, chartBox, summary, frames, table));
+
+  const chart = residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
+  const start = runner(form);
+  let frameUrl = null;
+
+  async function run() {
+    const request = { ...readCommon(form), method: value(form, 'method'),
+      differential: value(form, 'differential'), include_iterates: false };
+    const records = [];
+    let queued = false;
+    const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
+    summary.replaceChildren();
+    frames.hidden = true;
+    chart.set([[]]);
+    live.textContent = 'Solving\u2026';
+    await start(async (signal, progress) => {
+      if (Number.isFinite(request.max_iterations)) progress.max = request.max_iterations;
+      const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
+        records.push(rec);
+        progress.value = rec.iteration;
+        live.textContent = `Iteration ${rec.iteration}: \u2016f\u2016 = ${fmtExp(rec.residual)}`;
+        if (!queued) { queued = true; requestAnimationFrame(draw); }
+      } });
+      draw();
+      live.textContent = `Done: ${records.length} iterates streamed.`;
+      summary.replaceChildren(resultList(result));
+      table.querySelector('.table-wrap').replaceChildren(traceTable(records));
+      if (request.n === 3) await showFrames(request, signal);
+    });
+  }
+
+  async function showFrames(request, signal) {
+    const img = frames.querySelector('img');
+    try {
+      const url = await postImage('/api/v1/render/frames', request, { signal });
+      if (frameUrl) URL.revokeObjectURL(frameUrl);
+      frameUrl = url;
+      img.src = url;
+      frames.hidden = false;
+    } catch (err) {
+      if (err.name === 'AbortError') throw err;
+      frames.hidden = false;
+      img.removeAttribute('src');
+      frames.querySelector('figcaption').textContent = `Frames unavailable: ${err.message}`;
+    }
+  }
+
+  form.addEventListener('submit', (e) => { e.preventDefault(); run(); });
+  return {
+    open(request) {
+      fill(form, request);
+      run();
+    },
+  };
+}
+
+function traceTable(records) {
+  const head = ['n', '\u2016f(y\u2099)\u2016', 'step \u2016u\u2016', 'angle', '\u03c0 \u2212 angle', '\u2016y\u1d40y \u2212 I\u2016', 'time'];
+  return el('table', {},
+    el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
+    el('tbody', {}, records.map((r) => el('tr', {},
+      el('td', {}, String(r.iteration)), el('td', {}, fmtExp(r.residual)), el('td', {}, fmtExp(r.step)),
+      el('td', {}, r.angle?.toFixed(6) ?? '\u2014'), el('td', {}, fmtExp(r.distance_to_pi)),
+      el('td', {}, fmtExp(r.orthogonality_error)), el('td', {}, fmtSeconds(r.seconds))))));
+}

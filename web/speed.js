@@ -1,0 +1,113 @@
+// Speed vs accuracy panel: a work-precision chart (log CPU time against log global error), one series per
+// ticked integrator/method/differential, and for the rigid body the energy over time of each choice.
+import { ApiError, postJSON } from './api.js';
+import { energyChart, workPrecisionChart } from './chart.js';
+import { el } from './dom.js';
+import { actions, choiceMatrix, number, range, select } from './fields.js';
+import { checkedValues, runner, value } from './form.js';
+import { DIFFERENTIALS, INTEGRATORS, METHODS, PROBLEMS, fmtExp, fmtSeconds, label } from './labels.js';
+import { statusBadge } from './summary.js';
+
+const SHORT = { 'fixed-point': 'fixed point', 'newton-group': 'Newton group', 'newton-algebra': 'Newton algebra' };
+const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixed-point|exact',
+  'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
+
+function choiceLabel({ integrator, method, differential }) {
+  const d = method === 'fixed-point' ? '' : ` \u00b7 ${label(DIFFERENTIALS, differential)}`;
+  return `${label(INTEGRATORS, integrator)} \u00b7 ${SHORT[method]}${d}`;
+}
+
+const ROWS = INTEGRATORS.flatMap(([i, iText]) => METHODS.map(([m]) => ({ key: `${i}|${m}`,
+  text: `${iText}, ${SHORT[m]}`, single: m === 'fixed-point' })));
+
+function describe(row, differential) {
+  const [integrator, method] = row.split('|');
+  return choiceLabel({ integrator, method, differential });
+}
+
+export function createSpeedPanel(root) {
+  const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Work-precision request' },
+    select('problem', 'Problem', PROBLEMS, 'rigid-body'),
+    number('n', 'Dimension N', 3),
+    number('t_end', 'End time t_end', 1),
+    range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2^k for each whole k'),
+    number('energy_h', 'Step size h of the energy plot', 0.0625, 'Rigid body only'),
+    number('tol', 'Tolerance', 1e-13),
+    number('max_iterations', 'Max iterations', 100),
+    number('seed', 'Seed', 1),
+    actions());
+  form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS, DEFAULT_TICKS,
+    describe), form.querySelector('.field[data-field="h"]'));
+  const live = el('p', { class: 'live', role: 'status' }, 'Tick the choices to compare and press Run.');
+  const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
+  const energyBox = el('div', { class: 'chart', id: 'energy-chart' });
+  const energyFig = el('section', { class: 'energy', hidden: true },
+    el('h3', {}, 'Rigid body: energy over time'), energyBox);
+  const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
+  root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'), wpBox, energyFig, tableBox));
+  const start = runner(form);
+
+  form.addEventListener('submit', async (e) => {
+    e.preventDefault();
+    const choices = checkedValues(form, 'choices').map((v) => {
+      const [integrator, method, differential] = v.split('|');
+      return { integrator, method, differential };
+    });
+    const common = { problem: value(form, 'problem'), n: value(form, 'n'), t_end: value(form, 't_end'),
+      tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'), seed: value(form, 'seed') };
+    energyFig.hidden = true;
+    tableBox.replaceChildren();
+    await start(async (signal, progress) => {
+      if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
+      const lo = value(form, 'k_lo');
+      const hi = value(form, 'k_hi');
+      if (!Number.isInteger(lo) || !Number.isInteger(hi) || lo > hi) {
+        throw new ApiError('Give two whole numbers, the first not above the second.', { field: 'h' });
+      }
+      const h = Array.from({ length: hi - lo + 1 }, (_, i) => 2 ** (hi - i));
+      live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes\u2026`;
+      const wp = await postJSON('/api/v1/work-precision', { ...common, choices, h }, { signal });
+      workPrecisionChart(wpBox, wp.series.map((s) => ({ label: choiceLabel(s.choice), points: s.points })));
+      live.textContent = `Work precision done in ${fmtSeconds(wp.seconds)}.`;
+      if (common.problem !== 'rigid-body') return;
+      progress.max = choices.length;
+      const runs = [];
+      for (const [i, choice] of choices.entries()) {
+        live.textContent = `Integrating ${choiceLabel(choice)} (${i + 1} of ${choices.length})\u2026`;
+        const request = { ...common, ...choice, h: value(form, 'energy_h') };
+        const result = await postJSON('/api/v1/integrate', request, { signal }).catch((err) => {
+          if (err.field === 'h') err.field = 'energy_h';
+          throw err;
+        });
+        runs.push({ choice, result });
+        progress.value = i + 1;
+      }
+      drawEnergy(energyBox, runs);
+      energyFig.hidden = false;
+      tableBox.replaceChildren(integrateTable(runs));
+      live.textContent = `Done: work precision in ${fmtSeconds(wp.seconds)}, ${runs.length} energy runs.`;
+    });
+  });
+}
+
+// Energy relative to the first step's, so that drift is visible whatever E's size; runs that stopped
+// early are padded with gaps.
+function drawEnergy(box, runs) {
+  const longest = runs.reduce((a, r) => (r.result.steps.length > a.length ? r.result.steps : a), []);
+  const times = longest.map((s) => s.t);
+  energyChart(box, times, runs.map(({ choice, result }) => {
+    const e0 = result.steps[0]?.energy;
+    return { label: choiceLabel(choice),
+      values: times.map((_, k) => (k < result.steps.length && e0 ? (result.steps[k].energy - e0) / e0 : null)) };
+  }));
+}
+
+function integrateTable(runs) {
+  const head = ['Choice', 'Status', 'Global error', 'Energy drift', '\u2016y\u1d40y \u2212 I\u2016', 'CPU time'];
+  return el('table', {},
+    el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
+    el('tbody', {}, runs.map(({ choice, result: r }) => el('tr', {},
+      el('th', { scope: 'row' }, choiceLabel(choice)), el('td', {}, statusBadge(r.status)),
+      el('td', {}, fmtExp(r.global_error)), el('td', {}, fmtExp(r.energy_drift)),
+      el('td', {}, fmtExp(r.orthogonality_error)), el('td', {}, fmtSeconds(r.cpu_seconds))))));
+}

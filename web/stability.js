@@ -1,0 +1,135 @@
+// Stability map panel: a sweep over (method, N, h) streamed cell by cell into one interactive grid per
+// method, then the server-rendered heatmap PNG. Hover or focus a cell for its numbers; click or Enter
+// opens that solve in the Solve panel.
+import { ApiError, postImage, stream } from './api.js';
+import { el } from './dom.js';
+import { actions, checkboxes, number, range, select } from './fields.js';
+import { checkedValues, runner, value } from './form.js';
+import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from './labels.js';
+import { createGrid, metricScale, rampCss } from './grid.js';
+import { statusBadge } from './summary.js';
+
+const METHOD_ORDER = METHODS.map(([m]) => m);
+
+function integers(form, loName, hiName, field) {
+  const lo = value(form, loName);
+  const hi = value(form, hiName);
+  if (!Number.isInteger(lo) || !Number.isInteger(hi) || lo > hi) {
+    throw new ApiError('Give two whole numbers, the first not above the second.', { field });
+  }
+  return Array.from({ length: hi - lo + 1 }, (_, i) => lo + i);
+}
+
+export function createStabilityPanel(root, { openSolve }) {
+  const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Sweep request' },
+    select('problem', 'Problem', PROBLEMS, 'paper-linear'),
+    checkboxes('methods', 'Methods', METHODS, METHOD_ORDER),
+    select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
+    range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
+    range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2^k; the paper: \u221210 to 10'),
+    number('tol', 'Tolerance', 1e-13),
+    number('max_iterations', 'Max iterations', 100),
+    number('seed', 'Seed', 1),
+    select('metric', 'Colour converged cells by', METRICS, 'iterations'),
+    actions());
+  const live = el('p', { class: 'live', role: 'status' }, 'Press Run to sweep the grid (the paper\u2019s Figure 5.1).');
+  const maps = el('div', { class: 'maps', id: 'stability-grids' });
+  const legend = el('div', { class: 'legend', id: 'stability-legend' });
+  const details = el('aside', { class: 'cell-details', id: 'cell-details', 'aria-live': 'polite' },
+    el('p', { class: 'hint' }, 'Hover or focus a cell to see its numbers.'));
+  const image = el('figure', { class: 'heatmap', hidden: true },
+    el('img', { id: 'heatmap-img', alt: 'Server-rendered heatmap of the sweep, one panel per method' }),
+    el('figcaption', {}, 'Server-rendered heatmap (PNG): x = log\u2082 h, y = N, one panel per method.'));
+  root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image));
+
+  const start = runner(form);
+  let last = null; // { request, cells, grids }
+  let imageUrl = null;
+
+  function paint() {
+    const scale = metricScale(last.cells, value(form, 'metric'));
+    for (const c of last.cells) last.grids.find((g) => g.set(c, scale));
+    drawLegend(legend, last.cells, scale, value(form, 'metric'));
+  }
+
+  async function renderImage(signal) {
+    const body = { sweep: { cells: last.cells, seconds: last.seconds }, metric: value(form, 'metric'),
+      width: 360 * last.request.methods.length, height: 400 };
+    const url = await postImage('/api/v1/render/heatmap', body, { signal });
+    if (imageUrl) URL.revokeObjectURL(imageUrl);
+    imageUrl = url;
+    image.querySelector('img').src = url;
+    image.hidden = false;
+  }
+
+  function show(cell) {
+    const row = (key, term, v) => [el('dt', {}, term), el('dd', { dataset: { detail: key } }, v)];
+    details.replaceChildren(el('h3', {}, 'Cell'), el('dl', { class: 'summary' },
+      row('method', 'Method', cell.method), row('n', 'N', String(cell.n)), row('h', 'h', fmtH(cell.h)),
+      row('status', 'Status', statusBadge(cell.status)), row('reason', 'Why', cell.reason ?? ''),
+      row('iterations', 'Iterations', String(cell.iterations)), row('rate', 'Rate r', fmtRate(cell.rate)),
+      row('residual', 'Final \u2016f\u2016', fmtExp(cell.residual))),
+    el('button', { type: 'button', onclick: () => openCell(cell) }, 'Open in Solve'));
+  }
+
+  function openCell(cell) {
+    const r = last.request;
+    openSolve({ problem: r.problem, n: cell.n, h: cell.h, method: cell.method, differential: r.differential,
+      tol: r.tol, max_iterations: r.max_iterations, seed: r.seed });
+  }
+
+  form.addEventListener('submit', async (e) => {
+    e.preventDefault();
+    await start(async (signal, progress) => {
+      const request = { problem: value(form, 'problem'), methods: checkedValues(form, 'methods'),
+        differential: value(form, 'differential'), n: integers(form, 'n_lo', 'n_hi', 'n'),
+        h: integers(form, 'k_lo', 'k_hi', 'h').map((k) => 2 ** k), seed: value(form, 'seed'),
+        tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations') };
+      const grids = request.methods.map((method) => createGrid({ method, ns: request.n, hs: request.h,
+        onShow: show, onOpen: openCell }));
+      maps.replaceChildren(...grids.map((g) => g.element));
+      image.hidden = true;
+      last = { request, cells: [], grids, seconds: 0 };
+      const total = request.methods.length * request.n.length * request.h.length;
+      progress.max = total;
+      const result = await stream('/api/v1/sweep', request, { signal, onRecord(rec) {
+        if (rec.type !== 'cell') return;
+        const { type, ...cell } = rec;
+        last.cells.push(cell);
+        grids.find((g) => g.set(cell, { t: () => 0.5 }));
+        progress.value = last.cells.length;
+        live.textContent = `${last.cells.length} of ${total} cells solved\u2026`;
+      } });
+      if (Array.isArray(result.cells)) last.cells = result.cells;
+      last.cells.sort(cellOrder);
+      last.seconds = result.seconds ?? 0;
+      paint();
+      live.textContent = `${last.cells.length} cells in ${(last.seconds).toFixed(2)} s. Hover a cell for its numbers.`;
+      await renderImage(signal);
+    });
+  });
+
+  // A new metric recolours the grid and re-renders the PNG without solving again.
+  form.elements.namedItem('metric').addEventListener('change', () => {
+    if (!last || !last.cells.length) return;
+    paint();
+    start((signal) => renderImage(signal));
+  });
+}
+
+// The documented order of a sweep result: method-major, then N, then h.
+function cellOrder(a, b) {
+  return METHOD_ORDER.indexOf(a.method) - METHOD_ORDER.indexOf(b.method) || a.n - b.n || a.h - b.h;
+}
+
+function drawLegend(box, cells, scale, metric) {
+  const counts = {};
+  for (const c of cells) counts[c.status] = (counts[c.status] ?? 0) + 1;
+  const fmt = (v) => (metric === 'residual' ? `1e${v.toFixed(1)}` : metric === 'rate' ? v.toFixed(2) : String(v));
+  box.replaceChildren(
+    el('div', { class: 'ramp' }, el('span', {}, `converged, ${label(METRICS, metric).toLowerCase()}: ${fmt(scale.lo)}`),
+      el('span', { class: 'ramp-bar', style: `background:${rampCss()}` }), el('span', {}, fmt(scale.hi))),
+    el('ul', { class: 'swatches' }, Object.entries(STATUSES).filter(([s]) => s !== 'converged').map(([s, info]) =>
+      el('li', { class: counts[s] ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${info.color}` }),
+        `${info.text} (${counts[s] ?? 0})`))));
+}

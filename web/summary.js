@@ -1,0 +1,21 @@
+// The result summary and the status badge, shared by Solve and Compare.
+import { el } from './dom.js';
+import { STATUSES, fmtExp, fmtRate, fmtSeconds } from './labels.js';
+
+export function statusBadge(status) {
+  const color = STATUSES[status]?.color ?? '#777';
+  return el('span', { class: 'badge', style: `--badge:${color}`, dataset: { status } }, status.replace(/_/g, ' '));
+}
+
+// A <dl> whose <dd>s carry data-result=<field> so tests read what a person reads.
+export function resultList(result) {
+  const row = (key, term, value) => [el('dt', {}, term), el('dd', { dataset: { result: key } }, value)];
+  return el('dl', { class: 'summary' },
+    row('status', 'Status', statusBadge(result.status)),
+    row('reason', 'Why', result.reason || STATUSES[result.status]?.text || ''),
+    row('iterations', 'Iterations', String(result.iterations)),
+    row('rate', 'Rate r', result.rate === null || result.rate === undefined ? '\u2014 (needs 3 iterations)' : fmtRate(result.rate)),
+    row('residual', 'Final \u2016f(y)\u2016', fmtExp(result.residual)),
+    row('orthogonality_error', '\u2016y\u1d40y \u2212 I\u2016', fmtExp(result.orthogonality_error)),
+    row('seconds', 'Time', fmtSeconds(result.seconds)));
+}
