@@ -1,0 +1,31 @@
+#pragma once
+// Why long work should stop: the request's deadline passed, the server is shutting down, or the client left.
+// The core's callbacks return !should_stop(), so a solve or sweep ends within one iteration or cell.
+#include <atomic>
+#include <chrono>
+
+namespace lienewton::service {
+
+enum class StopReason { none, deadline, shutdown, client_gone };
+
+class StopCheck {
+ public:
+  using Clock = std::chrono::steady_clock;
+  StopCheck(Clock::time_point deadline, const std::atomic<bool>& abort) : deadline_(deadline), abort_(abort) {}
+
+  bool should_stop() {
+    if (reason_ != StopReason::none) return true;
+    if (abort_.load()) reason_ = StopReason::shutdown;
+    else if (Clock::now() >= deadline_) reason_ = StopReason::deadline;
+    return reason_ != StopReason::none;
+  }
+  void client_gone() { reason_ = StopReason::client_gone; }
+  StopReason reason() const { return reason_; }
+
+ private:
+  Clock::time_point deadline_;
+  const std::atomic<bool>& abort_;
+  StopReason reason_ = StopReason::none;
+};
+
+}  // namespace lienewton::service

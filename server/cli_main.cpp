@@ -1,0 +1,100 @@
+// lienewton: the command-line front end. Same JSON documents as the HTTP API, no server caps on N.
+#include <cstdio>
+#include <iostream>
+#include <iterator>
+#include <string>
+
+#include "core/integrate.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
+#include "core/work_precision.hpp"
+#include "render/renderer.hpp"
+#include "server/http_errors.hpp"
+#include "server/json_codec.hpp"
+#include "server/render_requests.hpp"
+
+namespace {
+
+using namespace lienewton;
+using namespace lienewton::service;
+
+constexpr const char* kUsage =
+    "usage: lienewton COMMAND < request.json\n"
+    "\n"
+    "Commands (request JSON on stdin, result on stdout; the documents of the HTTP API, see /openapi.json):\n"
+    "  solve            one solve of y = z exp(h g(y)) -> result JSON\n"
+    "  sweep            stability map over (method, n, h) -> {\"cells\": [...], \"seconds\"}\n"
+    "  integrate        time stepping with an implicit Lie group integrator -> result JSON\n"
+    "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
+    "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
+    "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
+    "  --help           this text\n"
+    "\n"
+    "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
+    "Exit status: 0 with the result (also when the solve did not converge: see its status), 2 for an invalid\n"
+    "request or usage -- then a JSON error {\"error\":{\"code\",\"field\",\"message\"}} naming the field is\n"
+    "printed on stderr (never stdout, which may carry a PNG) -- and 1 when the work could not be done\n"
+    "(renderer unavailable, internal error).\n";
+
+int fail(int status, std::string_view code, std::string_view field, std::string_view message) {
+  std::cerr << dump(error_body(code, field, message)) << "\n";
+  return status;
+}
+
+void write_png(const std::vector<unsigned char>& png) {
+  std::fwrite(png.data(), 1, png.size(), stdout);
+  std::fflush(stdout);
+}
+
+int run(const std::string& command, const std::string& sub) {
+  const std::string text((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
+  const json body = parse_body(text);
+  const Limits limits = Limits::unlimited();
+  json out;
+  if (command == "solve") {
+    const SolveRequest r = solve_request_from_json(body, limits);
+    out = to_json(solve(r), r.include_iterates);
+  } else if (command == "sweep") {
+    out = to_json(sweep(sweep_request_from_json(body, limits)));
+  } else if (command == "integrate") {
+    out = to_json(integrate(integrate_request_from_json(body, limits)));
+  } else if (command == "work-precision") {
+    out = to_json(work_precision(work_precision_request_from_json(body, limits)));
+  } else {
+    render::Renderer renderer(1);
+    write_png(sub == "frames" ? render_frames(body, limits, renderer, {}) : render_heatmap(body, limits, renderer, {}));
+    return 0;
+  }
+  std::cout << dump(out) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string command = argc > 1 ? argv[1] : "";
+  const std::string sub = argc > 2 ? argv[2] : "";
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  const bool plain = command == "solve" || command == "sweep" || command == "integrate" || command == "work-precision";
+  const bool render = command == "render" && (sub == "frames" || sub == "heatmap");
+  if ((!plain && !render) || argc > (render ? 3 : 2)) {
+    std::cerr << kUsage;
+    return fail(2, "usage", "", "unknown command; see lienewton --help");
+  }
+  try {
+    return run(command, sub);
+  } catch (const RequestError& e) {
+    return fail(2, error_code(e), e.field(), e.what());
+  } catch (const ApiError& e) {
+    return fail(e.status() < 500 ? 2 : 1, e.code(), e.field(), e.what());
+  } catch (const render::RenderUnavailable& e) {
+    return fail(1, "render_unavailable", "", e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(1, "out_of_memory", "", "the request needs more memory than the machine has");
+  } catch (const std::exception& e) {
+    return fail(1, "internal_error", "", e.what());
+  }
+}

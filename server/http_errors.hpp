@@ -1,0 +1,29 @@
+#pragma once
+// Error responses: always {"error":{"code","field","message"}} with a fixed status, never exception text.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace httplib { struct Response; }
+
+namespace lienewton::service {
+
+// Thrown inside handlers for an HTTP-level refusal (capacity, deadline, shutdown, 422 from the front end).
+class ApiError : public std::runtime_error {
+ public:
+  ApiError(int status, std::string code, std::string field, const std::string& message)
+      : std::runtime_error(message), status_(status), code_(std::move(code)), field_(std::move(field)) {}
+  int status() const { return status_; }
+  const std::string& code() const { return code_; }
+  const std::string& field() const { return field_; }
+
+ private:
+  int status_;
+  std::string code_;
+  std::string field_;
+};
+
+void send_error(httplib::Response& res, int status, std::string_view code, std::string_view field,
+                std::string_view message);
+
+}  // namespace lienewton::service

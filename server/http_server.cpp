@@ -1,0 +1,242 @@
+#include "server/http_server.hpp"
+
+#include <httplib.h>
+
+#include <chrono>
+#include <ctime>
+#include <regex>
+#include <stdexcept>
+
+#include "server/api_handlers.hpp"
+#include "server/http_errors.hpp"
+#include "server/request_limits.hpp"
+#include "server/routes.hpp"
+#include "server/static_files.hpp"
+
+namespace lienewton::service {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// What pre-routing learned about the request, for the logger and metrics. cpp-httplib runs pre-routing,
+// the handler and the logger of one request on the same worker thread.
+struct RequestContext {
+  bool active = false;
+  Clock::time_point start;
+  std::string id;
+  std::string route;
+};
+thread_local RequestContext t_context;
+
+std::string regex_escape(const std::string& path) {
+  static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
+  return std::regex_replace(path, special, R"(\$&)");
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// The request is a local of cpp-httplib's process_request; asking for Connection: close makes it close the
+// socket after answering, so an unread (refused) body is never parsed as the next request.
+void close_after_response(const httplib::Request& req) {
+  auto& mutable_req = const_cast<httplib::Request&>(req);
+  mutable_req.headers.erase("Connection");
+  mutable_req.headers.emplace("Connection", "close");
+}
+
+}  // namespace
+
+HttpServer::HttpServer(ServerOptions options)
+    : options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
+  web_root_ = options_.web_root;
+  api_ = std::make_unique<ApiHandlers>(options_, metrics_, abort_work_);
+  install();
+}
+
+HttpServer::~HttpServer() {
+  stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void HttpServer::install() {
+  auto& svr = *server_;
+  const int threads = options_.threads;
+  svr.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  svr.set_payload_max_length(options_.max_body);
+  svr.set_read_timeout(5, 0);
+  svr.set_write_timeout(5, 0);
+  svr.set_keep_alive_timeout(options_.keep_alive_seconds);
+  svr.set_keep_alive_max_count(100);
+  svr.set_tcp_nodelay(true);
+  svr.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
+
+  svr.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    t_context = RequestContext{true, Clock::now(), "", ""};
+    const std::string given = req.get_header_value("X-Request-Id");
+    t_context.id = valid_request_id(given) ? given : generate_request_id();
+    res.set_header("X-Request-Id", t_context.id);
+
+    const RouteSpec* route = find_route(req.method, req.path);
+    t_context.route = route ? route->path : (path_is_routed(req.path) ? req.path : "static");
+    if (route && route->path != "/") {
+      // API answers are never byte ranges: without this cpp-httplib would slice the JSON body.
+      const_cast<httplib::Request&>(req).ranges.clear();
+    }
+    auto refuse = [&](int status, const std::string& code, const std::string& message) {
+      metrics_.rejected(code);
+      close_after_response(req);
+      send_error(res, status, code, "", message);
+      return httplib::Server::HandlerResponse::Handled;
+    };
+    if (!route && path_is_routed(req.path)) {
+      std::string allow;
+      for (const auto& r : route_table()) {
+        if (r.path == req.path) allow += (allow.empty() ? "" : ", ") + r.method;
+      }
+      res.set_header("Allow", allow);
+      return refuse(405, "method_not_allowed", req.method + " is not allowed on " + req.path + " (allowed: " + allow + ")");
+    }
+    if (!route && req.method != "GET" && req.method != "HEAD") {
+      return refuse(404, "not_found", "no such route: " + req.method + " " + req.path);
+    }
+    const BodyKind kind = route ? route->body : BodyKind::none;
+    if (auto rejection = check_body_rules(req, kind, options_.max_body)) {
+      return refuse(rejection->status, rejection->code, rejection->message);
+    }
+    const bool health = route && (route->id == RouteId::livez || route->id == RouteId::readyz || route->id == RouteId::metrics);
+    if (draining_.load() && !health) {
+      res.set_header("Retry-After", "1");
+      return refuse(503, "shutting_down", "the server is shutting down");
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+
+  for (const auto& route : route_table()) {
+    httplib::Server::Handler handler;
+    switch (route.id) {
+      case RouteId::livez:
+        handler = [](const httplib::Request&, httplib::Response& res) {
+          res.set_content(R"({"status":"ok"})", "application/json");
+        };
+        break;
+      case RouteId::readyz:
+        handler = [this](const httplib::Request&, httplib::Response& res) {
+          if (draining_.load()) {
+            res.status = 503;
+            res.set_content(R"({"status":"draining"})", "application/json");
+          } else {
+            res.set_content(R"({"status":"ok"})", "application/json");
+          }
+        };
+        break;
+      case RouteId::metrics:
+        handler = [this](const httplib::Request&, httplib::Response& res) {
+          res.set_content(metrics_.render(), "text/plain; version=0.0.4");
+        };
+        break;
+      case RouteId::openapi:
+        handler = [doc = openapi_document()](const httplib::Request&, httplib::Response& res) {
+          res.set_content(doc, "application/json");
+        };
+        break;
+      case RouteId::index:
+        handler = [this](const httplib::Request& req, httplib::Response& res) { serve_static(web_root_, req, res); };
+        break;
+      default:
+        handler = [this, &route](const httplib::Request& req, httplib::Response& res) { api_->handle(route, req, res); };
+        break;
+    }
+    const std::string pattern = regex_escape(route.path);
+    if (route.method == "GET") svr.Get(pattern, handler);
+    else svr.Post(pattern, handler);
+    registered_.emplace_back(route.method, route.path);
+  }
+  // Everything else under / is a static file (or a JSON 404).
+  svr.Get("/.*", [this](const httplib::Request& req, httplib::Response& res) { serve_static(web_root_, req, res); });
+
+  // Runs for every status >= 400: fill in a JSON body where no handler wrote one (404, 400 from the parser).
+  svr.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty() || res.is_chunked_content_provider_) return httplib::Server::HandlerResponse::Unhandled;
+    std::string code = "error";
+    std::string message = "the request could not be served";
+    switch (res.status) {
+      case 400: code = "bad_request"; message = "the request is not valid HTTP"; break;
+      case 404: code = "not_found"; message = "no such route or file: " + req.path; break;
+      case 413: code = "body_too_large"; message = "the request body is too large"; break;
+      case 414: code = "uri_too_long"; message = "the request URI is too long"; break;
+      case 416: code = "range_not_satisfiable"; message = "the Range header cannot be satisfied"; break;
+      default: break;
+    }
+    send_error(res, res.status, code, "", message);
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+
+  // Without this cpp-httplib 0.11.4 puts the exception text into a response header (CVE-2026-28434).
+  svr.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+    res.headers.erase("Content-Type");
+    send_error(res, 500, "internal_error", "", "internal error");
+  });
+
+  svr.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+    const bool known = t_context.active;
+    const double seconds = known ? std::chrono::duration<double>(Clock::now() - t_context.start).count() : 0.0;
+    const std::string route = known ? t_context.route : "unparsed";
+    const std::string id = known ? t_context.id : generate_request_id();
+    t_context.active = false;
+    metrics_.request_finished(route, req.method.empty() ? "-" : req.method, res.status, seconds);
+    if (options_.log) {
+      json line{{"time", utc_now()},    {"request_id", id},  {"method", req.method},
+                {"path", req.path},     {"route", route},    {"status", res.status},
+                {"seconds", seconds},   {"remote", req.remote_addr}};
+      *options_.log << dump(line) + "\n" << std::flush;
+    }
+  });
+}
+
+int HttpServer::bind() {
+  if (options_.port == 0) {
+    port_ = server_->bind_to_any_port(options_.host);
+    if (port_ <= 0) throw std::runtime_error("cannot bind " + options_.host + " to any port");
+  } else {
+    if (!server_->bind_to_port(options_.host, options_.port)) {
+      throw std::runtime_error("cannot bind " + options_.host + ":" + std::to_string(options_.port));
+    }
+    port_ = options_.port;
+  }
+  return port_;
+}
+
+void HttpServer::listen() { server_->listen_after_bind(); }
+
+int HttpServer::start_background() {
+  const int port = bind();
+  thread_ = std::thread([this] { listen(); });
+  // cpp-httplib has no wait_until_ready: poll is_running().
+  for (int i = 0; i < 2000 && !server_->is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return port;
+}
+
+void HttpServer::drain_and_stop(double limit_seconds) {
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  draining_ = true;
+  const double grace = std::min(options_.shutdown_grace, limit_seconds / 2);
+  while (metrics_.work_in_flight() > 0 && elapsed() < grace) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // Past the grace: cancel what still runs; streams end with a shutting_down error record.
+  abort_work_ = true;
+  while (metrics_.work_in_flight() > 0 && elapsed() < limit_seconds) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  stop();
+}
+
+void HttpServer::stop() {
+  if (server_ && server_->is_running()) server_->stop();
+  if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+}
+
+}  // namespace lienewton::service

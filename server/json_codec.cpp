@@ -1,0 +1,482 @@
+#include "server/json_codec.hpp"
+
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+namespace lienewton::service {
+namespace {
+
+constexpr double kMaxH = 1e6;
+constexpr double kMaxTEnd = 1e6;
+constexpr int kMaxDepth = 32;  // deepest legal request is 4 levels; deeper input is an attack or a mistake
+
+[[noreturn]] void fail(const std::string& field, const std::string& message) {
+  throw FieldError("invalid_field", field, message);
+}
+
+// An object whose keys must all be known; null values count as absent so clients may send explicit nulls.
+class Fields {
+ public:
+  Fields(const json& value, std::string prefix, std::initializer_list<std::string_view> allowed)
+      : object_(value), prefix_(std::move(prefix)) {
+    if (!value.is_object()) {
+      fail(prefix_.empty() ? std::string() : prefix_.substr(0, prefix_.size() - 1),
+           prefix_.empty() ? "the request must be a JSON object" : prefix_.substr(0, prefix_.size() - 1) + " must be an object");
+    }
+    for (const auto& [key, _] : value.items()) {
+      bool known = false;
+      for (auto name : allowed) known = known || key == name;
+      if (!known) throw FieldError("unknown_field", prefix_ + key, "unknown field " + prefix_ + key);
+    }
+  }
+  const json* operator[](std::string_view name) const {
+    auto it = object_.find(name);
+    if (it == object_.end() || it->is_null()) return nullptr;
+    return &*it;
+  }
+  std::string path(std::string_view name) const { return prefix_ + std::string(name); }
+
+ private:
+  const json& object_;
+  std::string prefix_;
+};
+
+std::string range_text(long long lo, long long hi) {
+  // Built by appending: GCC 12 reports a false -Wrestrict on "[" + std::to_string(...).
+  std::string out("[");
+  out.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
+  return out;
+}
+
+// Integers must be JSON integers (no 3.0, no 1e300) and in range *before* conversion: get<int> wraps silently.
+int read_int(const json& v, const std::string& field, long long lo, long long hi) {
+  const std::string message = field + " must be an integer in " + range_text(lo, hi);
+  if (!v.is_number_integer()) fail(field, message);
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    if (hi < 0 || u > static_cast<std::uint64_t>(hi) || static_cast<long long>(u) < lo) fail(field, message);
+    return static_cast<int>(u);
+  }
+  const auto s = v.get<std::int64_t>();
+  if (s < lo || s > hi) fail(field, message);
+  return static_cast<int>(s);
+}
+
+std::uint64_t read_u64(const json& v, const std::string& field) {
+  if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+  if (v.is_number_integer() && v.get<std::int64_t>() >= 0) return static_cast<std::uint64_t>(v.get<std::int64_t>());
+  fail(field, field + " must be an unsigned 64-bit integer");
+}
+
+double read_number(const json& v, const std::string& field, const std::string& message) {
+  if (!v.is_number()) fail(field, message);
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(field, message);
+  return d;
+}
+
+double read_h(const json& v, const std::string& field) {
+  const std::string message = field + " must be a finite number in (0, 1e6]";
+  const double h = read_number(v, field, message);
+  if (!(h > 0 && h <= kMaxH)) fail(field, message);
+  return h;
+}
+
+double read_tol(const json& v, const std::string& field) {
+  const std::string message = field + " must be a finite number in [1e-16, 1]";
+  const double tol = read_number(v, field, message);
+  if (!(tol >= 1e-16 && tol <= 1)) fail(field, message);
+  return tol;
+}
+
+double read_t_end(const json& v, const std::string& field) {
+  const std::string message = field + " must be a finite number in (0, 1e6]";
+  const double t = read_number(v, field, message);
+  if (!(t > 0 && t <= kMaxTEnd)) fail(field, message);
+  return t;
+}
+
+bool read_bool(const json& v, const std::string& field) {
+  if (!v.is_boolean()) fail(field, field + " must be true or false");
+  return v.get<bool>();
+}
+
+template <class Enum, std::size_t K>
+Enum read_enum(const json& v, const std::string& field, std::optional<Enum> (*from_string)(std::string_view),
+               const Enum (&all)[K]) {
+  std::string names;
+  for (auto e : all) names += (names.empty() ? "" : ", ") + std::string(to_string(e));
+  const std::string message = field + " must be one of " + names;
+  if (!v.is_string()) fail(field, message);
+  auto parsed = from_string(v.get_ref<const std::string&>());
+  if (!parsed) fail(field, message);
+  return *parsed;
+}
+
+const json& read_array(const json& v, const std::string& field, std::size_t min_size, std::size_t max_size,
+                       const std::string& what) {
+  if (!v.is_array() || v.size() < min_size || v.size() > max_size) {
+    fail(field, field + " must be an array of " + what + " with " + std::to_string(min_size) + " to " +
+                    std::to_string(max_size) + " elements");
+  }
+  return v;
+}
+
+Eigen::Vector3d read_vec3(const json& v, const std::string& field, bool positive) {
+  const std::string message =
+      field + " must be an array of 3 " + (positive ? "positive finite numbers" : "finite numbers");
+  if (!v.is_array() || v.size() != 3) fail(field, message);
+  Eigen::Vector3d out;
+  for (int i = 0; i < 3; ++i) {
+    out[i] = read_number(v[static_cast<std::size_t>(i)], field, message);
+    if (positive && !(out[i] > 0)) fail(field, message);
+  }
+  return out;
+}
+
+RigidBodyParams read_rigid_body(const json& v, const std::string& field) {
+  Fields f(v, field + ".", {"inertia", "momentum"});
+  RigidBodyParams p;
+  if (auto x = f["inertia"]) p.inertia = read_vec3(*x, f.path("inertia"), true);
+  if (auto x = f["momentum"]) p.momentum = read_vec3(*x, f.path("momentum"), false);
+  return p;
+}
+
+Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
+  const std::string message = field + " must be an n x n array of rows of finite numbers (n = " + std::to_string(n) + ")";
+  if (!v.is_array() || v.size() != static_cast<std::size_t>(n)) fail(field, message);
+  Eigen::MatrixXd m(n, n);
+  for (int i = 0; i < n; ++i) {
+    const json& row = v[static_cast<std::size_t>(i)];
+    if (!row.is_array() || row.size() != static_cast<std::size_t>(n)) fail(field, message);
+    for (int j = 0; j < n; ++j) m(i, j) = read_number(row[static_cast<std::size_t>(j)], field, message);
+  }
+  return m;
+}
+
+// n, with z's size as the default when only z is given.
+int read_n(const Fields& f, const Limits& limits, int fallback) {
+  if (auto x = f["n"]) return read_int(*x, "n", 2, limits.max_n);
+  if (auto z = f["z"]; z && z->is_array() && z->size() >= 2 && z->size() <= static_cast<std::size_t>(limits.max_n)) {
+    return static_cast<int>(z->size());
+  }
+  return fallback;
+}
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json optional_number(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
+
+}  // namespace
+
+Limits Limits::unlimited() {
+  Limits l;
+  l.max_n = INT_MAX;
+  l.max_iterations = INT_MAX;
+  l.max_grid_cells = std::numeric_limits<std::size_t>::max();
+  l.max_steps = std::numeric_limits<double>::infinity();
+  l.max_frames = INT_MAX;
+  return l;
+}
+
+std::string error_code(const RequestError& error) {
+  if (auto fe = dynamic_cast<const FieldError*>(&error)) return fe->code();
+  return error.kind() == RequestError::Kind::unprocessable ? "unprocessable" : "invalid_field";
+}
+
+json parse_body(std::string_view text) {
+  if (text.empty()) throw FieldError("malformed_json", "", "the request body is empty; send a JSON object");
+  std::vector<std::set<std::string>> keys;  // one set per open object
+  json::parser_callback_t check = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (depth > kMaxDepth) throw FieldError("malformed_json", "", "the request body is nested too deeply");
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == json::parse_event_t::key && !keys.empty()) {
+      const auto& name = parsed.get_ref<const std::string&>();
+      if (!keys.back().insert(name).second) throw FieldError("duplicate_field", name, "duplicate field " + name);
+    }
+    return true;
+  };
+  try {
+    return json::parse(text.begin(), text.end(), check);
+  } catch (const json::parse_error& e) {
+    throw FieldError("malformed_json", "", "the request body is not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  }
+}
+
+SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
+  Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
+                      "include_iterates", "rigid_body"});
+  SolveRequest r;
+  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  r.n = read_n(f, limits, r.n);
+  if (auto x = f["h"]) r.h = read_h(*x, "h");
+  if (auto x = f["method"]) r.method = read_enum(*x, "method", method_from_string, kAllMethods);
+  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
+  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
+  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
+  if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
+  if (auto x = f["include_iterates"]) r.include_iterates = read_bool(*x, "include_iterates");
+  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
+  return r;
+}
+
+SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
+  Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body"});
+  SweepRequest r;
+  const std::size_t max_axis = std::min<std::size_t>(limits.max_grid_cells, 100000);
+  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  if (auto x = f["methods"]) {
+    r.methods.clear();
+    for (const auto& m : read_array(*x, "methods", 1, 16, "method names"))
+      r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
+  }
+  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
+  if (auto x = f["n"]) {
+    for (const auto& v : read_array(*x, "n", 1, max_axis, "integers")) r.n.push_back(read_int(v, "n", 2, limits.max_n));
+  }
+  if (auto x = f["h"]) {
+    for (const auto& v : read_array(*x, "h", 1, max_axis, "step sizes")) r.h.push_back(read_h(v, "h"));
+  }
+  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
+  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
+  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
+  // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
+  const SweepRequest full = with_defaults(r);
+  for (int n : full.n) {
+    if (n > limits.max_n) fail("n", "n must be an integer in " + range_text(2, limits.max_n));
+  }
+  const double cells = static_cast<double>(full.methods.size()) * static_cast<double>(full.n.size()) *
+                       static_cast<double>(full.h.size());
+  if (cells > static_cast<double>(limits.max_grid_cells)) {
+    fail("h", "the grid has " + std::to_string(static_cast<long long>(cells)) + " cells (methods x n x h); at most " +
+                  std::to_string(limits.max_grid_cells) + " are allowed");
+  }
+  return r;
+}
+
+IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
+  Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
+                      "seed", "z", "frames", "rigid_body"});
+  IntegrateRequest r;
+  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  r.n = read_n(f, limits, r.n);
+  if (auto x = f["h"]) r.h = read_h(*x, "h");
+  if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
+  if (auto x = f["integrator"]) r.integrator = read_enum(*x, "integrator", integrator_from_string, kAllIntegrators);
+  if (auto x = f["method"]) r.method = read_enum(*x, "method", method_from_string, kAllMethods);
+  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
+  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
+  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
+  if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
+  if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
+  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
+  if (r.t_end / r.h > limits.max_steps) {
+    fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
+  }
+  return r;
+}
+
+WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
+  Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body"});
+  WorkPrecisionRequest r;
+  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  if (auto x = f["n"]) r.n = read_int(*x, "n", 2, limits.max_n);
+  if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
+  if (auto x = f["choices"]) {
+    const auto& arr = read_array(*x, "choices", 1, 64, "choice objects");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string prefix = "choices[" + std::to_string(i) + "]";
+      Fields c(arr[i], prefix + ".", {"integrator", "method", "differential"});
+      WorkPrecisionChoice choice;
+      if (auto v = c["integrator"]) choice.integrator = read_enum(*v, c.path("integrator"), integrator_from_string, kAllIntegrators);
+      if (auto v = c["method"]) choice.method = read_enum(*v, c.path("method"), method_from_string, kAllMethods);
+      if (auto v = c["differential"]) choice.differential = read_enum(*v, c.path("differential"), differential_from_string, kAllDifferentials);
+      r.choices.push_back(choice);
+    }
+  }
+  if (auto x = f["h"]) {
+    for (const auto& v : read_array(*x, "h", 1, 64, "step sizes")) r.h.push_back(read_h(v, "h"));
+  }
+  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
+  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
+  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
+  // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.
+  std::vector<double> hs = r.h;
+  if (hs.empty()) for (int k = 2; k <= 7; ++k) hs.push_back(std::ldexp(1.0, -k));
+  const double choices = static_cast<double>(std::max<std::size_t>(r.choices.size(), 1));
+  double steps = 0;
+  for (double h : hs) steps += choices * r.t_end / h;
+  if (choices * static_cast<double>(hs.size()) > static_cast<double>(limits.max_grid_cells)) {
+    fail("h", "choices x h must be at most " + std::to_string(limits.max_grid_cells) + " runs");
+  }
+  if (steps > limits.max_steps) {
+    fail("h", "the runs would take " + std::to_string(static_cast<long long>(steps)) + " steps in total; at most " +
+                  std::to_string(static_cast<long long>(limits.max_steps)) + " are allowed");
+  }
+  return r;
+}
+
+SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
+  Fields f(body, "sweep.", {"cells", "seconds"});
+  SweepResult r;
+  const json* cells = f["cells"];
+  if (!cells) fail("sweep.cells", "sweep.cells is required");
+  const auto& arr = read_array(*cells, "sweep.cells", 1, limits.max_grid_cells, "cell objects");
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    Fields c(arr[i], "sweep.cells[" + std::to_string(i) + "].",
+             {"method", "n", "h", "status", "reason", "iterations", "rate", "residual", "seconds"});
+    SweepCell cell;
+    auto required = [&](std::string_view name) -> const json& {
+      const json* v = c[name];
+      if (!v) fail(c.path(name), c.path(name) + " is required");
+      return *v;
+    };
+    cell.method = read_enum(required("method"), c.path("method"), method_from_string, kAllMethods);
+    cell.n = read_int(required("n"), c.path("n"), 2, limits.max_n);
+    cell.h = read_h(required("h"), c.path("h"));
+    cell.status = read_enum(required("status"), c.path("status"), status_from_string, kAllStatuses);
+    if (auto v = c["reason"]) {
+      if (!v->is_string()) fail(c.path("reason"), c.path("reason") + " must be a string");
+      cell.reason = v->get<std::string>();
+    }
+    cell.iterations = read_int(required("iterations"), c.path("iterations"), 0, INT_MAX);
+    if (auto v = c["rate"]) cell.rate = read_number(*v, c.path("rate"), c.path("rate") + " must be a finite number or null");
+    if (auto v = c["residual"]) {
+      cell.residual = read_number(*v, c.path("residual"), c.path("residual") + " must be a finite number or null");
+    } else {
+      cell.residual = std::numeric_limits<double>::quiet_NaN();  // null: the solve produced no finite residual
+    }
+    if (auto v = c["seconds"]) cell.seconds = read_number(*v, c.path("seconds"), c.path("seconds") + " must be a finite number");
+    r.cells.push_back(std::move(cell));
+  }
+  if (auto v = f["seconds"]) r.seconds = read_number(*v, "sweep.seconds", "sweep.seconds must be a finite number");
+  return r;
+}
+
+json matrix_to_json(const Eigen::MatrixXd& m) {
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(finite_or_null(m(i, j)));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+json to_json(const TraceRecord& t, bool include_iterates) {
+  json j{{"iteration", t.iteration},
+         {"residual", finite_or_null(t.residual)},
+         {"step", finite_or_null(t.step)},
+         {"angle", finite_or_null(t.angle)},
+         {"distance_to_pi", finite_or_null(t.distance_to_pi())},
+         {"orthogonality_error", finite_or_null(t.orthogonality_error)},
+         {"seconds", finite_or_null(t.seconds)}};
+  if (include_iterates) j["y"] = matrix_to_json(t.y);
+  return j;
+}
+
+json to_json(const SolveResult& r, bool include_iterates) {
+  json trace = json::array();
+  for (const auto& t : r.trace) trace.push_back(to_json(t, include_iterates));
+  return json{{"status", std::string(to_string(r.status))},
+              {"reason", r.reason},
+              {"iterations", r.iterations},
+              {"rate", optional_number(r.rate)},
+              {"residual", finite_or_null(r.residual)},
+              {"orthogonality_error", finite_or_null(r.orthogonality_error)},
+              {"y", matrix_to_json(r.y)},
+              {"trace", std::move(trace)},
+              {"seconds", finite_or_null(r.seconds)},
+              {"linear_solver", r.linear_solver}};
+}
+
+json to_json(const SweepCell& c) {
+  return json{{"method", std::string(to_string(c.method))},
+              {"n", c.n},
+              {"h", finite_or_null(c.h)},
+              {"status", std::string(to_string(c.status))},
+              {"reason", c.reason},
+              {"iterations", c.iterations},
+              {"rate", optional_number(c.rate)},
+              {"residual", finite_or_null(c.residual)}};
+}
+
+json to_json(const SweepResult& r) {
+  json cells = json::array();
+  for (const auto& c : r.cells) cells.push_back(to_json(c));
+  return json{{"cells", std::move(cells)}, {"seconds", finite_or_null(r.seconds)}};
+}
+
+json to_json(const StepRecord& s) {
+  return json{{"step", s.step},
+              {"t", finite_or_null(s.t)},
+              {"iterations", s.iterations},
+              {"residual", finite_or_null(s.residual)},
+              {"status", std::string(to_string(s.status))},
+              {"energy", finite_or_null(s.energy)}};
+}
+
+json to_json(const IntegrateResult& r) {
+  json steps = json::array();
+  for (const auto& s : r.steps) steps.push_back(to_json(s));
+  json frames = json::array();
+  for (const auto& m : r.frames) frames.push_back(matrix_to_json(m));
+  json times = json::array();
+  for (double t : r.frame_times) times.push_back(finite_or_null(t));
+  return json{{"status", std::string(to_string(r.status))},
+              {"reason", r.reason},
+              {"steps", std::move(steps)},
+              {"global_error", optional_number(r.global_error)},
+              {"energy_drift", optional_number(r.energy_drift)},
+              {"orthogonality_error", finite_or_null(r.orthogonality_error)},
+              {"y", matrix_to_json(r.y)},
+              {"frames", std::move(frames)},
+              {"frame_times", std::move(times)},
+              {"cpu_seconds", finite_or_null(r.cpu_seconds)},
+              {"reference_seconds", finite_or_null(r.reference_seconds)}};
+}
+
+json to_json(const WorkPrecisionChoice& c) {
+  return json{{"integrator", std::string(to_string(c.integrator))},
+              {"method", std::string(to_string(c.method))},
+              {"differential", std::string(to_string(c.differential))}};
+}
+
+json to_json(const WorkPrecisionSeries& s) {
+  json points = json::array();
+  for (const auto& p : s.points) {
+    points.push_back(json{{"h", finite_or_null(p.h)},
+                          {"cpu_seconds", finite_or_null(p.cpu_seconds)},
+                          {"error", finite_or_null(p.error)},
+                          {"status", std::string(to_string(p.status))},
+                          {"iterations", p.iterations}});
+  }
+  return json{{"choice", to_json(s.choice)}, {"points", std::move(points)}};
+}
+
+json to_json(const WorkPrecisionResult& r) {
+  json series = json::array();
+  for (const auto& s : r.series) series.push_back(to_json(s));
+  return json{{"series", std::move(series)},
+              {"seconds", finite_or_null(r.seconds)},
+              {"reference_seconds", finite_or_null(r.reference_seconds)}};
+}
+
+json error_body(std::string_view code, std::string_view field, std::string_view message) {
+  json e{{"code", code}, {"message", message}};
+  e["field"] = field.empty() ? json(nullptr) : json(field);
+  return json{{"error", std::move(e)}};
+}
+
+json error_body(const RequestError& error) { return error_body(error_code(error), error.field(), error.what()); }
+
+std::string dump(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+}  // namespace lienewton::service

@@ -1,0 +1,72 @@
+#pragma once
+// JSON <-> core request/result model: the one place where the API's field names live. Every request field is
+// type- and range-checked here, before the core sees it; the core's validate() then checks the semantics.
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "core/integrate.hpp"
+#include "core/request_error.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
+#include "core/work_precision.hpp"
+
+namespace lienewton::service {
+
+using nlohmann::json;
+
+// Caps the server puts on top of the core's own rules; the CLI uses unlimited().
+struct Limits {
+  int max_n = 64;
+  int max_iterations = 10000;
+  std::size_t max_grid_cells = 5000;  // sweep: methods x n x h; work-precision: choices x h
+  double max_steps = 200000;          // integrate: t_end / h; work-precision: summed over choices and h
+  int max_frames = 1000;
+  static Limits unlimited();
+};
+
+// A request error with a machine-readable code: malformed_json, duplicate_field, unknown_field,
+// invalid_field (all HTTP 400) or unprocessable (422, from the core).
+class FieldError : public RequestError {
+ public:
+  FieldError(std::string code, std::string field, const std::string& message)
+      : RequestError(Kind::invalid, std::move(field), message), code_(std::move(code)) {}
+  const std::string& code() const { return code_; }
+
+ private:
+  std::string code_;
+};
+
+// The code a RequestError is reported with.
+std::string error_code(const RequestError& error);
+
+// Parses a request body. Rejects malformed JSON and duplicate keys (nlohmann keeps the last one silently).
+json parse_body(std::string_view text);
+
+SolveRequest solve_request_from_json(const json& body, const Limits& limits);
+SweepRequest sweep_request_from_json(const json& body, const Limits& limits);
+IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits);
+WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits);
+// A sweep result as produced by to_json(SweepResult), read back (the heatmap accepts one).
+SweepResult sweep_result_from_json(const json& body, const Limits& limits);
+
+json to_json(const TraceRecord& record, bool include_iterates);
+json to_json(const SolveResult& result, bool include_iterates);
+json to_json(const SweepCell& cell);
+json to_json(const SweepResult& result);
+json to_json(const StepRecord& record);
+json to_json(const IntegrateResult& result);
+json to_json(const WorkPrecisionChoice& choice);
+json to_json(const WorkPrecisionSeries& series);
+json to_json(const WorkPrecisionResult& result);
+json matrix_to_json(const Eigen::MatrixXd& m);
+
+json error_body(std::string_view code, std::string_view field, std::string_view message);
+json error_body(const RequestError& error);
+
+// Serialises without ever throwing on invalid UTF-8 (replaced) and without NaN/Inf (to_json writes null).
+std::string dump(const json& value);
+
+}  // namespace lienewton::service

@@ -1,0 +1,213 @@
+// The OpenAPI 3.0 document, generated from the route table plus the schemas of the JSON contract.
+#include <nlohmann/json.hpp>
+
+#include "core/options.hpp"
+#include "core/status.hpp"
+#include "server/routes.hpp"
+
+namespace lienewton::service {
+namespace {
+
+using nlohmann::json;
+
+template <class Enum, std::size_t K>
+json enum_schema(const Enum (&all)[K], const char* description) {
+  json values = json::array();
+  for (auto e : all) values.push_back(std::string(to_string(e)));
+  return json{{"type", "string"}, {"enum", values}, {"description", description}};
+}
+
+json ref(const std::string& name) { return json{{"$ref", "#/components/schemas/" + name}}; }
+json number(const char* description) { return json{{"type", "number"}, {"description", description}}; }
+json nullable_number(const char* description) {
+  return json{{"type", "number"}, {"nullable", true}, {"description", description}};
+}
+json integer(const char* description) { return json{{"type", "integer"}, {"description", description}}; }
+json array_of(json items) { return json{{"type", "array"}, {"items", std::move(items)}}; }
+json object(json properties, std::vector<std::string> required = {}, bool closed = true) {
+  json o{{"type", "object"}, {"properties", std::move(properties)}};
+  if (!required.empty()) o["required"] = required;
+  if (closed) o["additionalProperties"] = false;
+  return o;
+}
+json matrix(const char* description) {
+  json m = array_of(array_of(json{{"type", "number"}}));
+  m["description"] = description;
+  return m;
+}
+
+json schemas() {
+  const json problem = enum_schema(kAllProblems, "test problem");
+  const json method = enum_schema(kAllMethods, "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2");
+  const json differential = enum_schema(kAllDifferentials, "how the Newton differential is formed");
+  const json integrator = enum_schema(kAllIntegrators, "implicit Lie group integrator");
+  const json status = enum_schema(kAllStatuses, "how the solve ended");
+  const json h = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 1e6}, {"description", "step size"}};
+  const json n = json{{"type", "integer"}, {"minimum", 2}, {"description", "matrix size N (capped by --max-n)"}};
+  const json tol = json{{"type", "number"}, {"minimum", 1e-16}, {"maximum", 1}, {"default", 1e-13}, {"description", "absolute tolerance on ||f||"}};
+  const json max_iterations = json{{"type", "integer"}, {"minimum", 1}, {"default", 100}, {"description", "capped by --max-iterations"}};
+  const json seed = json{{"type", "integer"}, {"minimum", 0}, {"maximum", 18446744073709551615.0}, {"default", 1}, {"description", "unsigned 64-bit seed of the random start point"}};
+  const json t_end = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 1e6}, {"description", "end time"}};
+  const json width = json{{"type", "integer"}, {"minimum", 64}, {"maximum", 4096}};
+  const json rigid_body = object({{"inertia", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "principal moments (positive)"}}},
+                                  {"momentum", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "spatial angular momentum"}}}});
+  json s;
+  s["RigidBody"] = rigid_body;
+  s["SolveRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"method", method}, {"differential", differential},
+                              {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
+                              {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
+                              {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
+                              {"rigid_body", ref("RigidBody")}});
+  const json trace_props = {{"iteration", integer("n")}, {"residual", nullable_number("||f(y_n)||")},
+                            {"step", nullable_number("||u_{n-1}||")}, {"angle", nullable_number("largest rotation angle of z^-1 y_n")},
+                            {"distance_to_pi", nullable_number("pi - angle")},
+                            {"orthogonality_error", nullable_number("||y^T y - I||_F")},
+                            {"seconds", nullable_number("since the solve started")},
+                            {"y", matrix("iterate, only with include_iterates")}};
+  s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds"}, false);
+  s["SolveResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"iterations", integer("iterations done")},
+                             {"rate", nullable_number("convergence rate r (null when fewer than 3 iterations)")},
+                             {"residual", nullable_number("final ||f||")}, {"orthogonality_error", nullable_number("")},
+                             {"y", matrix("final iterate")}, {"trace", array_of(ref("TraceRecord"))},
+                             {"seconds", number("wall time")}, {"linear_solver", json{{"type", "string"}}}},
+                            {"status", "reason", "iterations", "rate", "residual", "orthogonality_error", "y", "trace", "seconds", "linear_solver"}, false);
+  s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
+                              {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
+                              {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")}});
+  s["SweepCell"] = object({{"method", method}, {"n", integer("N")}, {"h", number("step size")}, {"status", status},
+                           {"reason", json{{"type", "string"}}}, {"iterations", integer("")},
+                           {"rate", nullable_number("")}, {"residual", nullable_number("")}},
+                          {"method", "n", "h", "status", "reason", "iterations", "rate", "residual"}, false);
+  s["SweepResult"] = object({{"cells", array_of(ref("SweepCell"))}, {"seconds", number("wall time")}}, {"cells", "seconds"}, false);
+  s["IntegrateRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"t_end", t_end}, {"integrator", integrator},
+                                  {"method", method}, {"differential", differential}, {"tol", tol},
+                                  {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
+                                  {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
+                                  {"rigid_body", ref("RigidBody")}});
+  s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
+                            {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
+                           {}, false);
+  s["IntegrateResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"steps", array_of(ref("StepRecord"))},
+                                 {"global_error", nullable_number("||y_N - y_ref(t_end)||_F")},
+                                 {"energy_drift", nullable_number("rigid body: max relative energy change")},
+                                 {"orthogonality_error", nullable_number("")}, {"y", matrix("final state")},
+                                 {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
+                                 {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
+                                {}, false);
+  const json choice = object({{"integrator", integrator}, {"method", method}, {"differential", differential}});
+  s["WorkPrecisionChoice"] = choice;
+  s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
+                                      {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
+                                      {"rigid_body", ref("RigidBody")}});
+  s["WorkPrecisionResult"] = object(
+      {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
+                                   {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},
+                                                               {"error", nullable_number("global error")},
+                                                               {"status", status}, {"iterations", integer("")}}, {}, false))}}, {}, false))},
+       {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);
+  s["SolveStreamRecord"] = json{
+      {"description", "One NDJSON line / SSE data field. type is iteration|cell|step|series for progress records (the "
+                      "fields of TraceRecord, SweepCell, StepRecord or a series), then exactly one terminal record: "
+                      "result (the fields of the non-streamed result) or error (with an error object)."},
+      {"type", "object"},
+      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "cell", "step", "series", "result", "error"}}}},
+                      {"error", ref("ErrorDetail")}}},
+      {"required", {"type"}}};
+  s["RenderFramesRequest"] = json{
+      {"description", "A SolveRequest (n = 3; its iterates are drawn) or an IntegrateRequest (detected by kind = "
+                      "\"integrate\" or by any of integrator/t_end/frames; the trajectory's states are drawn, frames "
+                      "defaults to 16), plus the picture options below. Other N: 422."},
+      {"type", "object"},
+      {"properties", {{"kind", json{{"type", "string"}, {"enum", {"solve", "integrate"}}}}, {"width", width}, {"height", width},
+                      {"azimuth_deg", number("camera azimuth")}, {"elevation_deg", number("camera elevation")}}}};
+  s["RenderHeatmapRequest"] = json{
+      {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
+      {"type", "object"},
+      {"properties", {{"sweep", ref("SweepResult")},
+                      {"metric", json{{"type", "string"}, {"enum", {"iterations", "rate", "residual"}}}},
+                      {"width", width}, {"height", width}}}};
+  s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining"}}}}}, {"status"}, false);
+  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
+                             {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
+                             {"message", json{{"type", "string"}}}},
+                            {"code", "field", "message"}, false);
+  s["Error"] = object({{"error", ref("ErrorDetail")}}, {"error"}, false);
+  return s;
+}
+
+std::string status_text(int status) {
+  switch (status) {
+    case 400: return "Malformed or invalid request (the error names the field)";
+    case 404: return "Not found";
+    case 405: return "Method not allowed";
+    case 411: return "Content-Length required (no Transfer-Encoding)";
+    case 413: return "Body larger than --max-body";
+    case 415: return "Body is not JSON, or is compressed";
+    case 416: return "More than one byte range";
+    case 422: return "Valid JSON, impossible request";
+    case 503: return "Over capacity, draining, or renderer unavailable";
+    case 504: return "Deadline (--request-timeout) passed";
+    default: return "Error";
+  }
+}
+
+// Query parameters of a GET form: one per property of the request schema (see query_params.hpp).
+json query_parameters(const json& all_schemas, const std::string& schema) {
+  json params = json::array();
+  auto add = [&](const json& s) {
+    if (!s.contains("properties")) return;
+    for (const auto& [name, _] : s["properties"].items()) {
+      params.push_back(json{{"name", name}, {"in", "query"}, {"required", false},
+                            {"description", "mirrors the JSON field; arrays as [..] or comma-separated"},
+                            {"schema", {{"type", "string"}}}});
+    }
+  };
+  add(all_schemas[schema]);
+  if (schema == "RenderFramesRequest") add(all_schemas["SolveRequest"]);
+  if (schema == "RenderHeatmapRequest") add(all_schemas["SweepRequest"]);
+  return params;
+}
+
+}  // namespace
+
+std::string openapi_document() {
+  const json all = schemas();
+  json paths = json::object();
+  for (const auto& r : route_table()) {
+    json op{{"operationId", r.method == "GET" ? "get_" + r.path : "post_" + r.path}, {"summary", r.summary}};
+    if (!r.request_schema.empty()) {
+      if (r.method == "POST") {
+        op["requestBody"] = {{"required", true}, {"content", {{"application/json", {{"schema", ref(r.request_schema)}}}}}};
+      } else {
+        op["parameters"] = query_parameters(all, r.request_schema);
+      }
+    }
+    json content = json::object();
+    for (const auto& type : r.success_types) {
+      json media = json::object();
+      if (type == "application/json" && !r.result_schema.empty()) media["schema"] = ref(r.result_schema);
+      else if (type == "application/x-ndjson" || type == "text/event-stream") media["schema"] = ref("SolveStreamRecord");
+      else if (type == "image/png") media["schema"] = {{"type", "string"}, {"format", "binary"}};
+      else media["schema"] = {{"type", "string"}};
+      content[type] = media;
+    }
+    op["responses"]["200"] = {{"description", "OK"}, {"content", content}};
+    for (int status : r.errors) {
+      op["responses"][std::to_string(status)] = {{"description", status_text(status)},
+                                                 {"content", {{"application/json", {{"schema", ref("Error")}}}}}};
+    }
+    std::string method = r.method;
+    for (auto& c : method) c = static_cast<char>(c - 'A' + 'a');
+    paths[r.path][method] = op;
+  }
+  json doc{{"openapi", "3.0.3"},
+           {"info", {{"title", "lienewton"}, {"version", "0.1.0"},
+                     {"description", "Newton's method on Lie groups (Owren & Welfert): solves, stability sweeps, "
+                                     "implicit integrators, work-precision data and renders. Errors are "
+                                     "{\"error\":{\"code\",\"field\",\"message\"}}."}}},
+           {"paths", paths},
+           {"components", {{"schemas", all}}}};
+  return doc.dump(1, ' ', false, json::error_handler_t::replace);
+}
+
+}  // namespace lienewton::service

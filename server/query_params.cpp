@@ -1,0 +1,46 @@
+#include "server/query_params.hpp"
+
+namespace lienewton::service {
+namespace {
+
+// A scalar: a JSON number or boolean when it parses as one, else the raw string.
+json scalar(const std::string& text) {
+  if (text == "true") return true;
+  if (text == "false") return false;
+  if (!text.empty() && (text[0] == '-' || (text[0] >= '0' && text[0] <= '9'))) {
+    json parsed = json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (parsed.is_number()) return parsed;
+  }
+  return text;
+}
+
+}  // namespace
+
+json query_to_json(const std::multimap<std::string, std::string>& params) {
+  json out = json::object();
+  for (const auto& [key, value] : params) {
+    if (out.contains(key)) throw FieldError("duplicate_field", key, "duplicate parameter " + key);
+    if (!value.empty() && (value[0] == '[' || value[0] == '{')) {
+      try {
+        out[key] = parse_body(value);
+      } catch (const FieldError&) {
+        throw FieldError("invalid_field", key, key + " is not valid JSON");
+      }
+    } else if (value.find(',') != std::string::npos) {
+      json list = json::array();
+      std::size_t start = 0;
+      while (true) {
+        const auto comma = value.find(',', start);
+        list.push_back(scalar(value.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      out[key] = std::move(list);
+    } else {
+      out[key] = scalar(value);
+    }
+  }
+  return out;
+}
+
+}  // namespace lienewton::service

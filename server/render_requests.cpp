@@ -1,0 +1,153 @@
+#include "server/render_requests.hpp"
+
+#include <climits>
+
+#include "core/integrate.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
+#include "render/renderer.hpp"
+#include "server/http_errors.hpp"
+
+namespace lienewton::service {
+namespace {
+
+// Takes an integer picture option out of the request (the rest goes to the request codec).
+int take_int(json& request, const char* field, int fallback, int lo, int hi, bool zero_ok) {
+  auto it = request.find(field);
+  if (it == request.end() || it->is_null()) {
+    if (it != request.end()) request.erase(it);
+    return fallback;
+  }
+  const std::string message = std::string(field) + " must be an integer in [" + std::to_string(lo) + ", " +
+                              std::to_string(hi) + "]" + (zero_ok ? " or 0 for automatic" : "");
+  if (!it->is_number_integer()) throw FieldError("invalid_field", field, message);
+  const auto v = it->is_number_unsigned() ? static_cast<long long>(std::min<std::uint64_t>(it->get<std::uint64_t>(), LLONG_MAX))
+                                          : it->get<std::int64_t>();
+  if (!((v >= lo && v <= hi) || (zero_ok && v == 0))) throw FieldError("invalid_field", field, message);
+  request.erase(it);
+  return static_cast<int>(v);
+}
+
+double take_angle(json& request, const char* field, double fallback) {
+  auto it = request.find(field);
+  if (it == request.end() || it->is_null()) {
+    if (it != request.end()) request.erase(it);
+    return fallback;
+  }
+  const std::string message = std::string(field) + " must be a finite number of degrees in [-360, 360]";
+  if (!it->is_number()) throw FieldError("invalid_field", field, message);
+  const double v = it->get<double>();
+  if (!(v >= -360 && v <= 360)) throw FieldError("invalid_field", field, message);
+  request.erase(it);
+  return v;
+}
+
+std::string take_string(json& request, const char* field) {
+  auto it = request.find(field);
+  if (it == request.end() || it->is_null()) {
+    if (it != request.end()) request.erase(it);
+    return "";
+  }
+  if (!it->is_string()) throw FieldError("invalid_field", field, std::string(field) + " must be a string");
+  std::string v = it->get<std::string>();
+  request.erase(it);
+  return v;
+}
+
+[[noreturn]] void not_so3(const char* what) {
+  throw ApiError(422, "unprocessable", "n", std::string("rotation frames are drawn for SO(3) only: ") + what);
+}
+
+void before_work(const RenderHooks& hooks) {
+  if (hooks.before_work) hooks.before_work();
+}
+
+bool keep_going(const RenderHooks& hooks, int index) { return !hooks.keep_going || hooks.keep_going(index); }
+
+}  // namespace
+
+std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  render::FramesOptions options;
+  options.width = take_int(request, "width", options.width, render::kMinImageSize, render::kMaxImageSize, false);
+  options.height = take_int(request, "height", options.height, render::kMinImageSize, render::kMaxImageSize, false);
+  options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
+  options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
+  // An integrate request is told apart by kind, or by a field only integrate requests have.
+  std::string kind = take_string(request, "kind");
+  if (kind.empty()) {
+    kind = request.contains("integrator") || request.contains("t_end") || request.contains("frames") ? "integrate" : "solve";
+  }
+  std::vector<Eigen::Matrix3d> frames;
+  Eigen::Matrix3d start;
+  if (kind == "solve") {
+    SolveRequest r = solve_request_from_json(request, limits);
+    if (r.n != 3) not_so3("n must be 3");
+    r.include_iterates = true;
+    validate(r);
+    before_work(hooks);
+    SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
+    if (hooks.on_solve) hooks.on_solve(result);
+    if (result.status == Status::cancelled) throw RenderCancelled{};
+    for (const auto& t : result.trace) {
+      if (t.y.rows() == 3 && t.y.cols() == 3) frames.emplace_back(t.y);
+    }
+    if (frames.empty()) frames.emplace_back(result.y);
+    start = r.z ? Eigen::Matrix3d(*r.z) : frames.front();
+    return renderer.frames_png(frames, start, options);
+  }
+  if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
+  if (!request.contains("frames")) request["frames"] = 16;
+  IntegrateRequest r = integrate_request_from_json(request, limits);
+  if (r.n != 3) not_so3("n must be 3");
+  if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
+  r.reference = false;  // the picture needs no global error
+  validate(r);
+  before_work(hooks);
+  bool stopped = false;
+  IntegrateResult result = integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+  if (stopped) throw RenderCancelled{};
+  for (const auto& m : result.frames) {
+    if (m.rows() == 3 && m.cols() == 3) frames.emplace_back(m);
+  }
+  if (frames.empty()) frames.emplace_back(result.y);
+  start = frames.front();
+  return renderer.frames_png(frames, start, options);
+}
+
+std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,
+                                          const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  render::HeatmapOptions options;
+  options.width = take_int(request, "width", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  options.height = take_int(request, "height", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  if (const std::string metric = take_string(request, "metric"); !metric.empty()) {
+    auto parsed = render::heatmap_metric_from_string(metric);
+    if (!parsed) throw FieldError("invalid_field", "metric", "metric must be one of iterations, rate, residual");
+    options.metric = *parsed;
+  }
+  if (request.contains("sweep")) {
+    if (request.size() != 1) {
+      for (const auto& [key, _] : request.items()) {
+        if (key != "sweep") throw FieldError("unknown_field", key, "unknown field " + key + " next to sweep");
+      }
+    }
+    const SweepResult result = sweep_result_from_json(request["sweep"], limits);
+    before_work(hooks);
+    return renderer.heatmap_png(result, options);
+  }
+  SweepRequest r = sweep_request_from_json(request, limits);
+  validate(r);
+  before_work(hooks);
+  int index = 0;
+  bool stopped = false;
+  const SweepResult result = sweep(r, [&](const SweepCell& cell) {
+    if (hooks.on_cell) hooks.on_cell(cell);
+    return !(stopped = !keep_going(hooks, index++));
+  });
+  if (stopped) throw RenderCancelled{};
+  return renderer.heatmap_png(result, options);
+}
+
+}  // namespace lienewton::service

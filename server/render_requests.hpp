@@ -1,0 +1,33 @@
+#pragma once
+// Render requests, shared by the HTTP routes and the CLI: a solve/integrate/sweep request (or a finished
+// sweep) plus picture options -> PNG bytes. Transport-neutral: capacity, deadlines and metrics come in as hooks.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "server/json_codec.hpp"
+
+namespace lienewton::render { class Renderer; }
+
+namespace lienewton::service {
+
+struct RenderHooks {
+  std::function<void()> before_work;                         // after validation, before any solving (take a slot)
+  std::function<bool(int index)> keep_going;                 // per iteration/step/cell; false cancels
+  std::function<void(const SweepCell&)> on_cell;             // sweep cells, for metrics
+  std::function<void(const SolveResult&)> on_solve;          // finished solve, for metrics
+};
+
+// Thrown when keep_going returned false.
+struct RenderCancelled {};
+
+// Frames: a SolveRequest (n = 3, iterates drawn) or an IntegrateRequest (kind = "integrate", or any of
+// integrator/t_end/frames present; frames defaults to 16), plus width/height/azimuth_deg/elevation_deg.
+// N != 3 throws ApiError 422. Throws FieldError/RequestError for invalid requests.
+std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks);
+// Heatmap: a SweepRequest or {"sweep": SweepResult}, plus metric/width/height (0 or absent: automatic).
+std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,
+                                          const RenderHooks& hooks);
+
+}  // namespace lienewton::service

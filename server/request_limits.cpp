@@ -1,0 +1,88 @@
+#include "server/request_limits.hpp"
+
+#include <httplib.h>
+
+#include <cctype>
+#include <random>
+
+namespace lienewton::service {
+namespace {
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The media type without parameters, lower case.
+std::string media_type(const std::string& content_type) {
+  std::string t = content_type.substr(0, content_type.find(';'));
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.pop_back();
+  while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.erase(t.begin());
+  return lower(t);
+}
+
+}  // namespace
+
+std::optional<Rejection> check_body_rules(const httplib::Request& req, BodyKind kind, std::size_t max_body) {
+  if (req.has_header("Transfer-Encoding")) {
+    return Rejection{411, "length_required", "request bodies must be sent with Content-Length, not Transfer-Encoding"};
+  }
+  if (req.has_header("Content-Encoding")) {
+    return Rejection{415, "unsupported_content_encoding", "compressed request bodies are not accepted"};
+  }
+  const bool has_length = req.has_header("Content-Length");
+  std::size_t length = 0;
+  if (has_length) {
+    if (req.get_header_value_count("Content-Length") != 1) {
+      return Rejection{400, "invalid_content_length", "Content-Length must be given once"};
+    }
+    const std::string text = req.get_header_value("Content-Length");
+    if (text.empty() || text.size() > 19) return Rejection{400, "invalid_content_length", "Content-Length is not a number"};
+    for (char c : text) {
+      if (c < '0' || c > '9') return Rejection{400, "invalid_content_length", "Content-Length is not a number"};
+    }
+    length = std::stoull(text);
+    if (length > max_body) {
+      return Rejection{413, "body_too_large",
+                       "the request body is larger than the limit of " + std::to_string(max_body) + " bytes"};
+    }
+  }
+  if (kind == BodyKind::json) {
+    if (!has_length) return Rejection{411, "length_required", "POST requests need a Content-Length header"};
+    // curl -d sends application/x-www-form-urlencoded; the body is still parsed as JSON.
+    const std::string type = media_type(req.get_header_value("Content-Type"));
+    if (!type.empty() && type != "application/json" && type != "application/x-www-form-urlencoded") {
+      return Rejection{415, "unsupported_media_type", "the request body must be application/json"};
+    }
+  } else if (length > 0) {
+    return Rejection{400, "unexpected_body", "this route takes no request body"};
+  }
+  if (req.ranges.size() > 1) {
+    return Rejection{416, "multiple_ranges", "only a single byte range may be requested"};
+  }
+  return std::nullopt;
+}
+
+bool valid_request_id(std::string_view id) {
+  if (id.empty() || id.size() > 64) return false;
+  for (char c : id) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
+                    c == '_' || c == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+std::string generate_request_id() {
+  thread_local std::mt19937_64 rng{std::random_device{}()};
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string id(16, '0');
+  auto bits = rng();
+  for (auto& c : id) {
+    c = kHex[bits & 15];
+    bits >>= 4;
+  }
+  return id;
+}
+
+}  // namespace lienewton::service

@@ -1,0 +1,29 @@
+#pragma once
+// Body and header rules checked before cpp-httplib 0.11.4 reads a request body. That version caps only
+// Content-Length bodies (a chunked body bypasses the cap), inflates Content-Encoding bodies without a cap and
+// turns multi-range requests into large multipart copies, so all of these are refused up front.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace httplib { struct Request; }
+
+namespace lienewton::service {
+
+struct Rejection {
+  int status;
+  std::string code;
+  std::string message;
+};
+
+// kind: what the matched route accepts.
+enum class BodyKind { none, json };
+
+std::optional<Rejection> check_body_rules(const httplib::Request& request, BodyKind kind, std::size_t max_body);
+
+// Accepts ^[A-Za-z0-9._-]{1,64}$ only, so the id can be echoed and logged verbatim.
+bool valid_request_id(std::string_view id);
+std::string generate_request_id();
+
+}  // namespace lienewton::service

@@ -1,0 +1,43 @@
+#pragma once
+// Settings of lienewton-server: flags with LIENEWTON_* environment equivalents (flags win).
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "server/json_codec.hpp"
+
+namespace lienewton::service {
+
+struct ServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;                 // 0: any free port (tests)
+  int threads = 8;                 // HTTP worker threads (each open connection holds one)
+  Limits limits;                   // max_n, max_iterations, grid caps
+  double request_timeout = 30;     // seconds per request, streams included
+  std::string web_root;            // "" : found next to the binary or in the working directory
+  std::size_t max_body = 1 << 20;  // bytes
+  int max_streams = 0;             // concurrent long requests (streams, solves, renders); 0: threads - 2
+  int render_workers = 1;
+  double shutdown_grace = 3;       // seconds open streams may still finish after SIGTERM before being cut
+  int keep_alive_seconds = 2;      // short, because an idle keep-alive connection holds a worker
+  bool healthcheck = false;        // --healthcheck: GET /livez of host:port and exit 0/1
+  std::ostream* log = nullptr;     // one JSON line per request; nullptr: no log
+  // Test hook: called with each progress record's index (iteration, cell, step, series) as it is produced.
+  std::function<void(int)> on_progress;
+
+  int effective_max_streams() const;
+};
+
+// Parses argv and the environment. Returns nullopt and fills `message` on --help (exit 0) or on an error
+// (exit 2); `help` tells which.
+std::optional<ServerOptions> parse_server_options(int argc, const char* const* argv, std::string& message, bool& help);
+std::string server_usage();
+
+// The web root to serve: the option if set, else <exe>/../../web, <exe>/../web, <exe>/../share/lienewton/web
+// or ./web, whichever holds index.html.
+std::string find_web_root(const std::string& configured, const std::string& exe_path);
+
+}  // namespace lienewton::service

@@ -1,0 +1,103 @@
+#include "server/static_files.hpp"
+
+#include <httplib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "server/http_errors.hpp"
+
+namespace lienewton::service {
+namespace {
+
+constexpr std::uintmax_t kMaxFileSize = 32u << 20;
+
+std::string content_type(const std::filesystem::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext == ".html") return "text/html; charset=utf-8";
+  if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
+  if (ext == ".css") return "text/css; charset=utf-8";
+  if (ext == ".json") return "application/json";
+  if (ext == ".svg") return "image/svg+xml";
+  if (ext == ".png") return "image/png";
+  if (ext == ".ico") return "image/x-icon";
+  if (ext == ".woff2") return "font/woff2";
+  if (ext == ".txt" || ext == ".md") return "text/plain; charset=utf-8";
+  return "application/octet-stream";
+}
+
+bool inside(const std::filesystem::path& root, const std::filesystem::path& file) {
+  auto r = root.begin();
+  auto f = file.begin();
+  for (; r != root.end(); ++r, ++f) {
+    if (f == file.end() || *r != *f) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string resolve_static_path(const std::string& web_root, const std::string& url_path) {
+  namespace fs = std::filesystem;
+  if (url_path.empty() || url_path[0] != '/' || url_path.find('\0') != std::string::npos ||
+      url_path.find('\\') != std::string::npos) {
+    return "";
+  }
+  fs::path relative;
+  std::size_t start = 1;
+  while (start <= url_path.size()) {
+    const auto slash = url_path.find('/', start);
+    const std::string segment = url_path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    if (segment == "..") return "";
+    if (!segment.empty() && segment != ".") {
+      if (segment[0] == '.') return "";  // no dotfiles (.git, .env, ...)
+      relative /= segment;
+    }
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  std::error_code ec;
+  const fs::path root = fs::canonical(web_root, ec);
+  if (ec) return "";
+  fs::path file = root / relative;
+  if (fs::is_directory(file, ec)) file /= "index.html";
+  // canonical() follows symlinks, so a link pointing out of the root is caught by the prefix check.
+  const fs::path real = fs::canonical(file, ec);
+  if (ec || !inside(root, real) || !fs::is_regular_file(real, ec)) return "";
+  return real.string();
+}
+
+void serve_static(const std::string& web_root, const httplib::Request& req, httplib::Response& res) {
+  namespace fs = std::filesystem;
+  const std::string file = resolve_static_path(web_root, req.path);
+  std::error_code ec;
+  const auto size = file.empty() ? 0 : fs::file_size(file, ec);
+  if (file.empty() || ec || size > kMaxFileSize) {
+    send_error(res, 404, "not_found", "", "no such route or file: " + req.path);
+    return;
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) {
+    send_error(res, 404, "not_found", "", "no such route or file: " + req.path);
+    return;
+  }
+  if (req.ranges.size() == 1) {
+    // cpp-httplib slices a single range itself (206); an unsatisfiable one is answered here.
+    const auto [first, last] = req.ranges[0];
+    const auto n = static_cast<ssize_t>(body.size());
+    const bool ok = first < 0 ? last > 0 : (first < n && (last < 0 || last >= first));
+    if (!ok) {
+      res.set_header("Content-Range", "bytes */" + std::to_string(body.size()));
+      send_error(res, 416, "range_not_satisfiable", "", "the requested byte range is outside the file");
+      return;
+    }
+  } else {
+    res.status = 200;
+  }
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content(body, content_type(file));
+}
+
+}  // namespace lienewton::service
