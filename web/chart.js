@@ -128,7 +128,8 @@ export function energyChart(container, times, runs) {
   const opts = {
     series,
     scales: { x: { time: false } },
-    axes: [{ label: 'time t' }, { label: 'relative energy change (E(t) \u2212 E(t\u2081)) / E(t\u2081)', size: 70, values: (u, s) => s.map(fmtExp) }],
+    axes: [{ label: 'time t' }, { label: '(E(t) \u2212 E(t\u2081)) / E(t\u2081)', size: 80,
+      values: (u, s) => s.map((v) => (v === 0 ? '0' : v.toExponential(1))) }],
     legend: { live: true },
   };
   const plot = mount(container, opts, [times, ...runs.map((r) => r.values)]);

@@ -5,11 +5,10 @@ import { residualChart } from './chart.js';
 import { el } from './dom.js';
 import { actions, choiceMatrix } from './fields.js';
 import { checkedValues, runner } from './form.js';
-import { DIFFERENTIALS, fmtExp, fmtRate, fmtSeconds, label } from './labels.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label } from './labels.js';
 import { limitFields, problemFields, readCommon } from './request.js';
 import { statusBadge } from './summary.js';
 
-const SHORT_DIFF = { 'finite-difference': 'FD', 'dexpinv-0': 'dexp\u207b\u00b9 order 0', 'dexpinv-1': 'dexp\u207b\u00b9 order 1', exact: 'exact' };
 const ROWS = [{ key: 'fixed-point', text: 'Fixed point', single: true },
   { key: 'newton-group', text: 'Newton group' }, { key: 'newton-algebra', text: 'Newton algebra' }];
 
@@ -21,7 +20,7 @@ function runLabel(method, differential) {
 export function createComparePanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Compare request' },
     problemFields(),
-    choiceMatrix('runs', 'Methods and differentials', ROWS, DIFFERENTIALS.map(([d]) => [d, SHORT_DIFF[d]]),
+    choiceMatrix('runs', 'Methods and differentials', ROWS, DIFFERENTIALS_SHORT,
       ['fixed-point|exact', 'newton-group|exact', 'newton-algebra|exact', 'newton-group|finite-difference'], runLabel),
     limitFields(),
     actions());

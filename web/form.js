@@ -64,6 +64,8 @@ export function runner(form) {
     progress.hidden = false;
     progress.removeAttribute('value');
     form.setAttribute('aria-busy', 'true');
+    // On a phone the output sits below the long form: bring it into view so progress is visible.
+    if (matchMedia('(max-width: 820px)').matches) form.nextElementSibling?.scrollIntoView({ block: 'start' });
     try {
       await task(mine.signal, progress);
       return true;

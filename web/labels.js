@@ -19,6 +19,14 @@ export const DIFFERENTIALS = [
   ['exact', 'Exact dexp\u207b\u00b9'],
 ];
 
+// Column heads of the method x differential tick tables, which must fit a narrow form.
+export const DIFFERENTIALS_SHORT = [
+  ['finite-difference', 'FD'],
+  ['dexpinv-0', 'order 0'],
+  ['dexpinv-1', 'order 1'],
+  ['exact', 'exact'],
+];
+
 export const INTEGRATORS = [
   ['implicit-euler', 'Implicit Euler'],
   ['dirk-cg2', 'DIRK Crouch\u2013Grossman 2'],

@@ -5,7 +5,7 @@ import { energyChart, workPrecisionChart } from './chart.js';
 import { el } from './dom.js';
 import { actions, choiceMatrix, number, range, select } from './fields.js';
 import { checkedValues, runner, value } from './form.js';
-import { DIFFERENTIALS, INTEGRATORS, METHODS, PROBLEMS, fmtExp, fmtSeconds, label } from './labels.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, METHODS, PROBLEMS, fmtExp, fmtSeconds, label } from './labels.js';
 import { statusBadge } from './summary.js';
 
 const SHORT = { 'fixed-point': 'fixed point', 'newton-group': 'Newton group', 'newton-algebra': 'Newton algebra' };
@@ -17,8 +17,9 @@ function choiceLabel({ integrator, method, differential }) {
   return `${label(INTEGRATORS, integrator)} \u00b7 ${SHORT[method]}${d}`;
 }
 
-const ROWS = INTEGRATORS.flatMap(([i, iText]) => METHODS.map(([m]) => ({ key: `${i}|${m}`,
-  text: `${iText}, ${SHORT[m]}`, single: m === 'fixed-point' })));
+const SHORT_INTEGRATOR = { 'implicit-euler': 'Euler', 'dirk-cg2': 'DIRK-CG2' };
+const ROWS = INTEGRATORS.flatMap(([i]) => METHODS.map(([m]) => ({ key: `${i}|${m}`,
+  text: `${SHORT_INTEGRATOR[i]}, ${SHORT[m]}`, single: m === 'fixed-point' })));
 
 function describe(row, differential) {
   const [integrator, method] = row.split('|');
@@ -36,7 +37,7 @@ export function createSpeedPanel(root) {
     number('max_iterations', 'Max iterations', 100),
     number('seed', 'Seed', 1),
     actions());
-  form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS, DEFAULT_TICKS,
+  form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS_SHORT, DEFAULT_TICKS,
     describe), form.querySelector('.field[data-field="h"]'));
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the choices to compare and press Run.');
   const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
