@@ -60,16 +60,14 @@ function record(container, plot) {
   container.dataset.series = String(plot.series.length - 1);
 }
 
+// One coloured series; the legend shows values in the same format as the tables.
+function line(label, i, extra = {}) {
+  return { label, stroke: SERIES_COLORS[i % SERIES_COLORS.length], width: 2, value: (u, v) => fmtExp(v), ...extra };
+}
+
 // Residual ||f(y_n)|| against n on a log axis, one series per run; xs are iteration numbers.
 export function residualChart(container, labels) {
-  const series = [{ label: 'n' }].concat(labels.map((text, i) => ({
-    label: text,
-    stroke: SERIES_COLORS[i % SERIES_COLORS.length],
-    width: 2,
-    points: { show: true, size: 6 },
-    spanGaps: false,
-    value: (u, v) => fmtExp(v),
-  })));
+  const series = [{ label: 'n' }].concat(labels.map((text, i) => line(text, i, { points: { show: true, size: 6 } })));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
@@ -97,14 +95,8 @@ export function workPrecisionChart(container, runs) {
     return [pts.map((p) => p.cpu_seconds), pts.map((p) => p.error)];
   });
   const data = tables.length ? uPlot.join(tables) : [[]];
-  const series = [{ label: 'CPU time', value: (u, v) => fmtSeconds(v) }].concat(runs.map((r, i) => ({
-    label: r.label,
-    stroke: SERIES_COLORS[i % SERIES_COLORS.length],
-    width: 2,
-    points: { show: true, size: 7 },
-    spanGaps: true,
-    value: (u, v) => fmtExp(v),
-  })));
+  const series = [{ label: 'CPU time', value: (u, v) => fmtSeconds(v) }].concat(runs.map((r, i) =>
+    line(r.label, i, { points: { show: true, size: 7 }, spanGaps: true })));
   const opts = {
     series,
     scales: { x: { time: false, distr: 3, log: 10, range: decades }, y: { distr: 3, log: 10, range: decades } },
@@ -119,12 +111,7 @@ export function workPrecisionChart(container, runs) {
 
 // Rigid-body kinetic energy over time, one series per choice (all share the same step times).
 export function energyChart(container, times, runs) {
-  const series = [{ label: 't' }].concat(runs.map((r, i) => ({
-    label: r.label,
-    stroke: SERIES_COLORS[i % SERIES_COLORS.length],
-    width: 2,
-    value: (u, v) => (v == null ? '\u2014' : v.toPrecision(10)),
-  })));
+  const series = [{ label: 't' }].concat(runs.map((r, i) => line(r.label, i)));
   const opts = {
     series,
     scales: { x: { time: false } },

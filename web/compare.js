@@ -28,7 +28,7 @@ export function createComparePanel(root) {
   const chartBox = el('div', { class: 'chart', id: 'compare-chart' });
   const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
   root.append(form, el('div', { class: 'output' }, live, chartBox, tableBox));
-  const start = runner(form);
+  const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
     e.preventDefault();

@@ -72,7 +72,8 @@ export function range(name, legend, [loName, lo], [hiName, hi], hint) {
 export function actions() {
   return el('div', { class: 'actions' },
     el('button', { type: 'submit', class: 'primary', dataset: { role: 'run' } }, 'Run'),
-    el('button', { type: 'button', dataset: { role: 'cancel' }, disabled: true }, 'Cancel'),
+    el('button', { type: 'button', dataset: { role: 'cancel' }, disabled: true, title: 'Cancel (Esc)',
+      'aria-keyshortcuts': 'Escape' }, 'Cancel'),
     el('progress', { hidden: true, 'aria-label': 'progress' }),
     el('p', { class: 'form-error', role: 'alert' }));
 }

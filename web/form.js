@@ -49,12 +49,14 @@ export function showError(form, err) {
 
 // Runs one request at a time per form. The Cancel button aborts the fetch; the server notices the closed
 // connection and stops computing.
-export function runner(form) {
+// `live` is the panel's status line: it says how a run ended when that is not a result.
+export function runner(form, live) {
   const run = form.querySelector('button[data-role="run"]');
   const cancel = form.querySelector('button[data-role="cancel"]');
   const progress = form.querySelector('progress');
   let controller = null;
   cancel.addEventListener('click', () => controller?.abort());
+  form.addEventListener('keydown', (e) => { if (e.key === 'Escape' && controller) controller.abort(); });
   return async function start(task) {
     controller?.abort();
     const mine = (controller = new AbortController());
@@ -70,8 +72,9 @@ export function runner(form) {
       await task(mine.signal, progress);
       return true;
     } catch (err) {
-      if (err.name === 'AbortError') showError(form, new Error('Cancelled.'));
-      else showError(form, err);
+      const cancelled = err.name === 'AbortError';
+      showError(form, cancelled ? new Error('Cancelled.') : err);
+      live.textContent = cancelled ? 'Cancelled.' : `Failed: ${err.message}`;
       return false;
     } finally {
       if (controller === mine) {

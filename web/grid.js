@@ -74,7 +74,14 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
   });
   const cellOf = (e) => e.target.closest?.('.cell');
   grid.addEventListener('mouseover', (e) => { const c = cellOf(e); if (c && data.has(c)) onShow(data.get(c)); });
-  grid.addEventListener('focusin', (e) => { const c = cellOf(e); if (c && data.has(c)) onShow(data.get(c)); });
+  grid.addEventListener('focusin', (e) => {
+    const c = cellOf(e);
+    if (!c) return;
+    current.tabIndex = -1; // focus by mouse or script moves the single tab stop too
+    current = c;
+    current.tabIndex = 0;
+    if (data.has(c)) onShow(data.get(c));
+  });
   grid.addEventListener('click', (e) => { const c = cellOf(e); if (c && data.has(c)) { move(c); onOpen(data.get(c)); } });
 
   return {

@@ -3,7 +3,7 @@
 export const PROBLEMS = [
   ['paper-linear', 'paper-linear (\u00a75, linear g)'],
   ['paper-sine', 'paper-sine (\u00a75, sine g)'],
-  ['rigid-body', 'rigid-body (free rigid body, N = 3)'],
+  ['rigid-body', 'rigid-body (free rigid body)'],
 ];
 
 export const METHODS = [

@@ -22,12 +22,13 @@ export function createSolvePanel(root) {
   const summary = el('div', { class: 'result', id: 'solve-result' });
   const frames = el('figure', { class: 'frames', hidden: true },
     el('img', { id: 'solve-frames', alt: 'Rotation frames of the iterates y\u2099' }),
-    el('figcaption', {}, 'Iterates y\u2099 as rotated frames (server-rendered PNG).'));
-  const table = el('details', { class: 'trace' }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
+    el('figcaption', {}));
+  const caption = 'Iterates y\u2099 as rotated frames (server-rendered PNG).';
+  const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
   root.append(form, el('div', { class: 'output' }, live, chartBox, summary, frames, table));
 
   const chart = residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
-  const start = runner(form);
+  const start = runner(form, live);
   let frameUrl = null;
 
   async function run() {
@@ -38,6 +39,7 @@ export function createSolvePanel(root) {
     const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
     summary.replaceChildren();
     frames.hidden = true;
+    table.hidden = true;
     chart.set([[]]);
     live.textContent = 'Solving\u2026';
     await start(async (signal, progress) => {
@@ -52,6 +54,7 @@ export function createSolvePanel(root) {
       live.textContent = `Done: ${records.length} iterates streamed.`;
       summary.replaceChildren(resultList(result));
       table.querySelector('.table-wrap').replaceChildren(traceTable(records));
+      table.hidden = false;
       if (request.n === 3) await showFrames(request, signal);
     });
   }
@@ -63,6 +66,7 @@ export function createSolvePanel(root) {
       if (frameUrl) URL.revokeObjectURL(frameUrl);
       frameUrl = url;
       img.src = url;
+      frames.querySelector('figcaption').textContent = caption;
       frames.hidden = false;
     } catch (err) {
       if (err.name === 'AbortError') throw err;

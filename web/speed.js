@@ -46,7 +46,7 @@ export function createSpeedPanel(root) {
     el('h3', {}, 'Rigid body: energy over time'), energyBox);
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
   root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'), wpBox, energyFig, tableBox));
-  const start = runner(form);
+  const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
     e.preventDefault();

@@ -42,7 +42,7 @@ export function createStabilityPanel(root, { openSolve }) {
     el('figcaption', {}, 'Server-rendered heatmap (PNG): x = log\u2082 h, y = N, one panel per method.'));
   root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image));
 
-  const start = runner(form);
+  const start = runner(form, live);
   let last = null; // { request, cells, grids }
   let imageUrl = null;
 

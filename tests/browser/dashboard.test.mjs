@@ -148,6 +148,11 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
     near(await detail('rate'), cell.rate, 5e-4, 0);
     near(await detail('residual'), cell.residual, 0, 5e-4);
   }
+  // Keyboard: the grid is one tab stop; arrows move between cells and show their numbers.
+  const first = sweep.cells[0];
+  await panel.locator(`.cell[data-method="${first.method}"][data-n="${first.n}"][data-h="${first.h}"]`).focus();
+  await page.keyboard.press('ArrowRight');
+  assert.equal(parseFloat(await text('#cell-details [data-detail="h"]')), sweep.cells[1].h);
   await shot('stability');
   // Click opens the cell's solve in the Solve panel.
   const cell = sweep.cells[17];
