@@ -1,6 +1,6 @@
 #include "server/api_handlers.hpp"
 
-#include <httplib.h>
+#include "server/httplib_include.hpp"
 
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
@@ -186,8 +186,10 @@ void ApiHandlers::stream(httplib::Response& res, std::shared_ptr<Slot> slot, Job
   const char* type = sse ? "text/event-stream" : "application/x-ndjson";
   res.set_chunked_content_provider(type, [this, slot, job = std::move(job), stop, sse](std::size_t, httplib::DataSink& sink) {
     auto write = [&](const char* kind, json record) {
-      record["type"] = kind;
-      const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + dump(record) + "\n\n" : dump(record) + "\n";
+      // "type" first, for people reading the stream; the rest keeps the result's field order.
+      std::string line = dump(record);
+      line = std::string("{\"type\":\"") + kind + "\"" + (line.size() > 2 ? "," : "") + line.substr(1);
+      const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + line + "\n\n" : line + "\n";
       if (!sink.write(text.data(), text.size())) {
         stop->client_gone();
         return false;

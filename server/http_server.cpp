@@ -1,6 +1,6 @@
 #include "server/http_server.hpp"
 
-#include <httplib.h>
+#include "server/httplib_include.hpp"
 
 #include <chrono>
 #include <ctime>

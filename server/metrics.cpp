@@ -16,7 +16,7 @@ const std::vector<double> kIterationBuckets{1, 2, 3, 4, 5, 6, 8, 10, 15, 20, 30,
 std::string number(double v) {
   if (std::isinf(v)) return v > 0 ? "+Inf" : "-Inf";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::snprintf(buf, sizeof buf, "%.15g", v);
   return buf;
 }
 

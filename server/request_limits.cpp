@@ -1,6 +1,6 @@
 #include "server/request_limits.hpp"
 
-#include <httplib.h>
+#include "server/httplib_include.hpp"
 
 #include <cctype>
 #include <random>

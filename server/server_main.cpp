@@ -1,6 +1,6 @@
 // lienewton-server: flags/env -> HttpServer; SIGTERM/SIGINT are blocked in every thread and taken by sigwait
 // in a dedicated thread, because httplib::Server::stop() is not async-signal-safe.
-#include <httplib.h>
+#include "server/httplib_include.hpp"
 
 #include <csignal>
 #include <cstdio>

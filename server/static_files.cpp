@@ -1,6 +1,6 @@
 #include "server/static_files.hpp"
 
-#include <httplib.h>
+#include "server/httplib_include.hpp"
 
 #include <filesystem>
 #include <fstream>

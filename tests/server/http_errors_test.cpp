@@ -1,0 +1,170 @@
+// Every error status the service documents, each with a JSON body naming what was wrong.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "server/json_codec.hpp"
+#include "test_server.hpp"
+
+namespace lienewton::service {
+namespace {
+
+using testing::raw_http;
+using testing::raw_status;
+using testing::TestServer;
+
+json error_of(const httplib::Result& res) {
+  EXPECT_TRUE(res);
+  if (!res) return {};
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
+  return json::parse(res->body)["error"];
+}
+
+json error_of_raw(const std::string& answer) {
+  const auto start = answer.find("\r\n\r\n");
+  if (start == std::string::npos) return {};
+  return json::parse(answer.substr(start + 4))["error"];
+}
+
+TEST(HttpErrors, ClientErrors) {
+  TestServer s;
+  auto c = s.client();
+  auto r = c.Post("/api/v1/solve", R"({"n":3,"h":-1})", "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r)["field"], "h");
+  EXPECT_EQ(error_of(r)["code"], "invalid_field");
+  EXPECT_EQ(error_of(r)["message"], "h must be a finite number in (0, 1e6]");
+  r = c.Post("/api/v1/solve", R"({"n":3,"colour":1})", "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r)["field"], "colour");
+  r = c.Post("/api/v1/solve", R"({"n":)", "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r)["code"], "malformed_json");
+  r = c.Post("/api/v1/solve", R"({"n":100})", "application/json");  // above --max-n (64)
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r)["field"], "n");
+  r = c.Get("/api/v1/solve/events?n=3&h=zero");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r)["field"], "h");
+  r = c.Post("/api/v1/solve", R"({"problem":"rigid-body","n":4})", "application/json");
+  EXPECT_EQ(r->status, 422);
+  EXPECT_EQ(error_of(r)["code"], "unprocessable");
+  EXPECT_EQ(error_of(r)["field"], "n");
+  r = c.Post("/api/v1/solve", R"({"n":2,"z":[[1,1],[0,1]]})", "application/json");
+  EXPECT_EQ(r->status, 422);
+  EXPECT_EQ(error_of(r)["field"], "z");
+  r = c.Get("/no/such/page");
+  EXPECT_EQ(r->status, 404);
+  EXPECT_EQ(error_of(r)["code"], "not_found");
+  r = c.Post("/api/v1/nothing", "{}", "application/json");
+  EXPECT_EQ(r->status, 404);
+  r = c.Get("/api/v1/solve");
+  EXPECT_EQ(r->status, 405);
+  EXPECT_EQ(r->get_header_value("Allow"), "POST");
+  EXPECT_EQ(error_of(r)["code"], "method_not_allowed");
+  r = c.Post("/metrics", "{}", "application/json");
+  EXPECT_EQ(r->status, 405);
+  r = c.Post("/api/v1/solve", "<n>3</n>", "application/xml");
+  EXPECT_EQ(r->status, 415);
+  EXPECT_EQ(error_of(r)["code"], "unsupported_media_type");
+}
+
+TEST(HttpErrors, BodyRulesBeforeTheBodyIsRead) {
+  ServerOptions o;
+  o.max_body = 1000;
+  TestServer s(o);
+  // No Content-Length.
+  std::string answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 411) << answer;
+  EXPECT_EQ(error_of_raw(answer)["code"], "length_required");
+  // Chunked body: refused before cpp-httplib reads it (it would bypass the size cap).
+  answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{\"n\":\r\n0\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 411) << answer;
+  EXPECT_NE(answer.find("Connection: close"), std::string::npos);
+  // Compressed body.
+  answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\nContent-Length: 4\r\n\r\nabcd");
+  EXPECT_EQ(raw_status(answer), 415) << answer;
+  // Too large, announced: refused without reading, and the unread body is not parsed as a request.
+  answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nContent-Length: 5000\r\n\r\nGET /livez HTTP/1.1\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 413) << answer;
+  EXPECT_EQ(answer.find("HTTP/1.1 200"), std::string::npos) << answer;
+  // Not HTTP at all: the parser's 400 still gets a JSON body.
+  answer = raw_http(s.port, "HELLO\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 400) << answer;
+  EXPECT_EQ(error_of_raw(answer)["code"], "bad_request");
+}
+
+TEST(HttpErrors, OverCapacityKeepsLivezAnswering) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool release = false;
+  std::atomic<int> blocked{0};
+  ServerOptions o;
+  o.threads = 4;  // two work slots
+  o.on_progress = [&](int) {
+    ++blocked;
+    std::unique_lock lock(m);
+    cv.wait(lock, [&] { return release; });
+  };
+  TestServer s(o);
+  std::vector<std::thread> holders;
+  for (int k = 0; k < 2; ++k) {
+    holders.emplace_back([&] {
+      auto c = s.client();
+      c.Post("/api/v1/solve", R"({"n":3,"h":0.5})", "application/json");
+    });
+  }
+  while (blocked.load() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  auto c = s.client();
+  auto r = c.Post("/api/v1/solve", R"({"n":3,"h":0.5})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 503);
+  EXPECT_EQ(error_of(r)["code"], "over_capacity");
+  EXPECT_EQ(r->get_header_value("Retry-After"), "1");
+  auto live = c.Get("/livez");
+  ASSERT_TRUE(live);
+  EXPECT_EQ(live->status, 200);
+  {
+    std::lock_guard lock(m);
+    release = true;
+  }
+  cv.notify_all();
+  for (auto& t : holders) t.join();
+}
+
+TEST(HttpErrors, DeadlineGives504AndCancelsTheSolve) {
+  ServerOptions o;
+  o.request_timeout = 0.2;
+  std::atomic<int> last{0};
+  o.on_progress = [&](int i) {
+    last = i;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  };
+  TestServer s(o);
+  auto c = s.client();
+  // Fixed point with a large h does not converge: without the deadline it would run all 1000 iterations.
+  auto r = c.Post("/api/v1/solve", R"({"n":3,"h":50,"method":"fixed-point","max_iterations":1000})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 504);
+  EXPECT_EQ(error_of(r)["code"], "deadline_exceeded");
+  EXPECT_LT(last.load(), 50);
+  // Streamed, the deadline ends the stream with an error record.
+  std::vector<json> records;
+  auto streamed = testing::post_lines(c, "/api/v1/solve", R"({"n":3,"h":50,"method":"fixed-point","max_iterations":1000})",
+                                      "application/x-ndjson", [&](const std::string& line) {
+                                        records.push_back(json::parse(line));
+                                        return true;
+                                      });
+  ASSERT_TRUE(streamed);
+  ASSERT_FALSE(records.empty());
+  EXPECT_EQ(records.back()["type"], "error");
+  EXPECT_EQ(records.back()["error"]["code"], "deadline_exceeded");
+  EXPECT_EQ(s.server->metrics().solves("cancelled"), 2u);
+}
+
+}  // namespace
+}  // namespace lienewton::service

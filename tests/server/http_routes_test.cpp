@@ -1,0 +1,200 @@
+// Every route answers in the documented format.
+#include <gtest/gtest.h>
+
+#include "server/json_codec.hpp"
+#include "test_server.hpp"
+
+namespace lienewton::service {
+namespace {
+
+using testing::TestServer;
+
+const std::string kSolve =
+    R"({"problem":"paper-linear","n":3,"h":0.5,"method":"newton-group","differential":"exact","seed":1})";
+
+bool is_png(const std::string& body) { return body.size() > 8 && body.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0; }
+
+class Routes : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new TestServer(); }
+  static void TearDownTestSuite() {
+    delete server_;
+    server_ = nullptr;
+  }
+  httplib::Client client() { return server_->client(); }
+  static TestServer* server_;
+};
+TestServer* Routes::server_ = nullptr;
+
+TEST_F(Routes, HealthMetricsAndOpenApi) {
+  auto c = client();
+  auto live = c.Get("/livez");
+  ASSERT_TRUE(live);
+  EXPECT_EQ(live->status, 200);
+  EXPECT_EQ(json::parse(live->body)["status"], "ok");
+  EXPECT_EQ(live->get_header_value("X-Content-Type-Options"), "nosniff");
+  auto ready = c.Get("/readyz");
+  ASSERT_TRUE(ready);
+  EXPECT_EQ(ready->status, 200);
+  auto metrics = c.Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_EQ(metrics->status, 200);
+  EXPECT_NE(metrics->body.find("lienewton_http_requests_total{route=\"/livez\""), std::string::npos);
+  EXPECT_NE(metrics->body.find("lienewton_streams_in_flight"), std::string::npos);
+  EXPECT_NE(metrics->body.find("lienewton_solve_iterations_bucket"), std::string::npos);
+  auto doc = c.Get("/openapi.json");
+  ASSERT_TRUE(doc);
+  EXPECT_EQ(json::parse(doc->body)["openapi"], "3.0.3");
+}
+
+TEST_F(Routes, SolveAnswersTheDocumentedFormat) {
+  auto c = client();
+  auto res = c.Post("/api/v1/solve", kSolve, "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
+  const json r = json::parse(res->body);
+  EXPECT_EQ(r["status"], "converged");
+  for (const char* field : {"status", "reason", "iterations", "rate", "residual", "orthogonality_error", "y", "trace",
+                            "seconds", "linear_solver"}) {
+    EXPECT_TRUE(r.contains(field)) << field;
+  }
+  EXPECT_EQ(r["y"].size(), 3u);
+  const json& t = r["trace"][0];
+  for (const char* field : {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds"}) {
+    EXPECT_TRUE(t.contains(field)) << field;
+  }
+  EXPECT_FALSE(t.contains("y"));
+  // curl -d sends application/x-www-form-urlencoded; the README's curl line must work.
+  auto form = c.Post("/api/v1/solve", kSolve, "application/x-www-form-urlencoded");
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 200);
+}
+
+TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
+  auto c = client();
+  auto sweep = c.Post("/api/v1/sweep",
+                      R"({"problem":"paper-linear","methods":["fixed-point","newton-group"],"differential":"exact","n":[3,4],"h":[0.25,0.5]})",
+                      "application/json");
+  ASSERT_TRUE(sweep);
+  ASSERT_EQ(sweep->status, 200) << sweep->body;
+  const json s = json::parse(sweep->body);
+  ASSERT_EQ(s["cells"].size(), 8u);
+  for (const char* field : {"method", "n", "h", "status", "reason", "iterations", "rate", "residual"}) {
+    EXPECT_TRUE(s["cells"][0].contains(field)) << field;
+  }
+  auto integ = c.Post("/api/v1/integrate", R"({"problem":"rigid-body","h":0.1,"t_end":0.5,"frames":3})", "application/json");
+  ASSERT_TRUE(integ);
+  ASSERT_EQ(integ->status, 200) << integ->body;
+  const json i = json::parse(integ->body);
+  EXPECT_EQ(i["steps"].size(), 5u);
+  for (const char* field : {"status", "reason", "steps", "global_error", "energy_drift", "orthogonality_error", "y", "frames",
+                            "frame_times", "cpu_seconds", "reference_seconds"}) {
+    EXPECT_TRUE(i.contains(field)) << field;
+  }
+  auto wp = c.Post("/api/v1/work-precision",
+                   R"({"problem":"rigid-body","t_end":0.5,"h":[0.1,0.05],"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"},{"integrator":"dirk-cg2","method":"newton-group","differential":"exact"}]})",
+                   "application/json");
+  ASSERT_TRUE(wp);
+  ASSERT_EQ(wp->status, 200) << wp->body;
+  const json w = json::parse(wp->body);
+  ASSERT_EQ(w["series"].size(), 2u);
+  EXPECT_EQ(w["series"][1]["choice"]["integrator"], "dirk-cg2");
+  EXPECT_EQ(w["series"][0]["points"].size(), 2u);
+  for (const char* field : {"h", "cpu_seconds", "error", "status", "iterations"}) {
+    EXPECT_TRUE(w["series"][0]["points"][0].contains(field)) << field;
+  }
+}
+
+TEST_F(Routes, RenderFramesAndHeatmap) {
+  auto c = client();
+  auto frames = c.Post("/api/v1/render/frames", R"({"n":3,"h":0.5,"width":128,"height":128})", "application/json");
+  ASSERT_TRUE(frames);
+  ASSERT_EQ(frames->status, 200) << frames->body;
+  EXPECT_EQ(frames->get_header_value("Content-Type"), "image/png");
+  EXPECT_TRUE(is_png(frames->body));
+  auto trajectory = c.Post("/api/v1/render/frames", R"({"problem":"rigid-body","h":0.1,"t_end":1,"width":128,"height":128})", "application/json");
+  ASSERT_TRUE(trajectory);
+  ASSERT_EQ(trajectory->status, 200) << trajectory->body;
+  EXPECT_TRUE(is_png(trajectory->body));
+  auto frames_get = c.Get("/api/v1/render/frames?n=3&h=0.5&method=newton-algebra&width=96&height=96");
+  ASSERT_TRUE(frames_get);
+  ASSERT_EQ(frames_get->status, 200) << frames_get->body;
+  EXPECT_TRUE(is_png(frames_get->body));
+  auto not_so3 = c.Post("/api/v1/render/frames", R"({"n":4,"h":0.5})", "application/json");
+  ASSERT_TRUE(not_so3);
+  EXPECT_EQ(not_so3->status, 422);
+  EXPECT_EQ(json::parse(not_so3->body)["error"]["field"], "n");
+
+  const std::string sweep = R"({"methods":["newton-group"],"n":[3,4],"h":[0.25,0.5],"differential":"exact")";
+  auto heat = c.Post("/api/v1/render/heatmap", sweep + R"(,"metric":"iterations"})", "application/json");
+  ASSERT_TRUE(heat);
+  ASSERT_EQ(heat->status, 200) << heat->body;
+  EXPECT_TRUE(is_png(heat->body));
+  auto result = c.Post("/api/v1/sweep", sweep + "}", "application/json");
+  ASSERT_TRUE(result);
+  auto from_result = c.Post("/api/v1/render/heatmap", R"({"metric":"residual","sweep":)" + result->body + "}", "application/json");
+  ASSERT_TRUE(from_result);
+  ASSERT_EQ(from_result->status, 200) << from_result->body;
+  EXPECT_TRUE(is_png(from_result->body));
+  auto heat_get = c.Get("/api/v1/render/heatmap?methods=newton-group&n=3,4&h=[0.25,0.5]&differential=exact");
+  ASSERT_TRUE(heat_get);
+  ASSERT_EQ(heat_get->status, 200) << heat_get->body;
+  EXPECT_TRUE(is_png(heat_get->body));
+  auto bad_metric = c.Post("/api/v1/render/heatmap", sweep + R"(,"metric":"speed"})", "application/json");
+  ASSERT_TRUE(bad_metric);
+  EXPECT_EQ(bad_metric->status, 400);
+  EXPECT_EQ(json::parse(bad_metric->body)["error"]["field"], "metric");
+  auto too_wide = c.Post("/api/v1/render/frames", R"({"n":3,"width":100000})", "application/json");
+  ASSERT_TRUE(too_wide);
+  EXPECT_EQ(too_wide->status, 400);
+  EXPECT_EQ(json::parse(too_wide->body)["error"]["field"], "width");
+}
+
+TEST_F(Routes, StaticFilesStayInsideTheWebRoot) {
+  auto c = client();
+  auto index = c.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_NE(index->body.find("lienewton"), std::string::npos);
+  auto js = c.Get("/app.js");
+  ASSERT_TRUE(js);
+  EXPECT_EQ(js->status, 200);
+  EXPECT_EQ(js->get_header_value("Content-Type"), "text/javascript; charset=utf-8");
+  auto sub = c.Get("/sub/");
+  ASSERT_TRUE(sub);
+  EXPECT_EQ(sub->body, "sub");
+  auto range = c.Get("/app.js", {{"Range", "bytes=0-5"}});
+  ASSERT_TRUE(range);
+  EXPECT_EQ(range->status, 206);
+  EXPECT_EQ(range->body, "export");
+  // Traversal, encoded traversal, symlinks out of the root and dotfiles all end as 404 (or 400), never SECRET.
+  for (const char* path : {"/../secret.txt", "/%2e%2e/secret.txt", "/sub/../../secret.txt", "/link.txt", "/.hidden",
+                           "/..%2fsecret.txt"}) {
+    const std::string answer = testing::raw_http(server_->port, std::string("GET ") + path + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(answer.find("SECRET"), std::string::npos) << path;
+    const int status = testing::raw_status(answer);
+    EXPECT_TRUE(status == 404 || status == 400) << path << " -> " << status;
+  }
+  auto multi = c.Get("/app.js", {{"Range", "bytes=0-1,3-4"}});
+  ASSERT_TRUE(multi);
+  EXPECT_EQ(multi->status, 416);
+  auto outside = c.Get("/app.js", {{"Range", "bytes=1000-2000"}});
+  ASSERT_TRUE(outside);
+  EXPECT_EQ(outside->status, 416);
+}
+
+TEST_F(Routes, RequestIdIsEchoedOnlyWhenSafe) {
+  auto c = client();
+  auto given = c.Get("/livez", {{"X-Request-Id", "trace-123.abc_X"}});
+  ASSERT_TRUE(given);
+  EXPECT_EQ(given->get_header_value("X-Request-Id"), "trace-123.abc_X");
+  auto bad = c.Get("/livez", {{"X-Request-Id", "no spaces<script>"}});
+  ASSERT_TRUE(bad);
+  const std::string id = bad->get_header_value("X-Request-Id");
+  EXPECT_NE(id, "no spaces<script>");
+  EXPECT_EQ(id.size(), 16u);
+}
+
+}  // namespace
+}  // namespace lienewton::service

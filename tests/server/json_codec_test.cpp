@@ -1,0 +1,234 @@
+// The codec names every invalid field, never converts silently, and never writes NaN/Inf.
+#include "server/json_codec.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "server/query_params.hpp"
+
+namespace lienewton::service {
+namespace {
+
+struct Failure {
+  std::string code;
+  std::string field;
+  bool unprocessable = false;
+};
+
+template <class Parse>
+Failure failure_of(Parse parse) {
+  try {
+    parse();
+  } catch (const RequestError& e) {
+    return {error_code(e), e.field(), e.kind() == RequestError::Kind::unprocessable};
+  }
+  ADD_FAILURE() << "no error";
+  return {};
+}
+
+Failure solve_failure(const std::string& text, Limits limits = {}) {
+  return failure_of([&] { solve_request_from_json(parse_body(text), limits); });
+}
+
+TEST(JsonCodec, ParsesAFullSolveRequest) {
+  const auto r = solve_request_from_json(
+      parse_body(R"({"problem":"paper-sine","n":4,"h":0.25,"method":"newton-algebra","differential":"dexpinv-1",
+                     "tol":1e-12,"max_iterations":50,"seed":18446744073709551615,"include_iterates":true})"),
+      Limits{});
+  EXPECT_EQ(r.problem, ProblemKind::paper_sine);
+  EXPECT_EQ(r.n, 4);
+  EXPECT_EQ(r.h, 0.25);
+  EXPECT_EQ(r.method, Method::newton_algebra);
+  EXPECT_EQ(r.differential, Differential::dexpinv_1);
+  EXPECT_EQ(r.tol, 1e-12);
+  EXPECT_EQ(r.max_iterations, 50);
+  EXPECT_EQ(r.seed, std::numeric_limits<std::uint64_t>::max());
+  EXPECT_TRUE(r.include_iterates);
+  EXPECT_FALSE(r.z.has_value());
+}
+
+TEST(JsonCodec, NamesEachInvalidSolveField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"problem":"nope"})", "problem"},
+      {R"({"problem":3})", "problem"},
+      {R"({"n":3.0})", "n"},
+      {R"({"n":1e300})", "n"},
+      {R"({"n":4294967299})", "n"},
+      {R"({"n":-3})", "n"},
+      {R"({"n":1})", "n"},
+      {R"({"n":65})", "n"},
+      {R"({"n":"3"})", "n"},
+      {R"({"h":0})", "h"},
+      {R"({"h":-0.5})", "h"},
+      {R"({"h":1e7})", "h"},
+      {R"({"h":"0.5"})", "h"},
+      {R"({"method":"newton"})", "method"},
+      {R"({"differential":"exactly"})", "differential"},
+      {R"({"tol":0})", "tol"},
+      {R"({"tol":2})", "tol"},
+      {R"({"tol":1e-17})", "tol"},
+      {R"({"max_iterations":0})", "max_iterations"},
+      {R"({"max_iterations":10001})", "max_iterations"},
+      {R"({"max_iterations":10.5})", "max_iterations"},
+      {R"({"seed":-1})", "seed"},
+      {R"({"seed":1.5})", "seed"},
+      {R"({"seed":18446744073709551616})", "seed"},
+      {R"({"include_iterates":1})", "include_iterates"},
+      {R"({"n":3,"z":[[1,0,0],[0,1,0]]})", "z"},
+      {R"({"n":3,"z":[[1,0,0],[0,1,0],[0,0]]})", "z"},
+      {R"({"n":3,"z":[[1,0,0],[0,1,0],[0,0,"1"]]})", "z"},
+      {R"({"n":2,"z":[[1,0],[0,1e400]]})", "z"},
+      {R"({"rigid_body":{"inertia":[1,2]}})", "rigid_body.inertia"},
+      {R"({"rigid_body":{"inertia":[1,0,3]}})", "rigid_body.inertia"},
+      {R"({"rigid_body":{"momentum":[1,2,"x"]}})", "rigid_body.momentum"},
+      {R"({"rigid_body":[1,2,3]})", "rigid_body"},
+  };
+  for (const auto& [text, field] : cases) {
+    const Failure f = solve_failure(text);
+    EXPECT_EQ(f.field, field) << text;
+    EXPECT_EQ(f.code, "invalid_field") << text;
+  }
+}
+
+TEST(JsonCodec, RejectsUnknownDuplicateAndMalformed) {
+  Failure f = solve_failure(R"({"n":3,"hh":0.5})");
+  EXPECT_EQ(f.code, "unknown_field");
+  EXPECT_EQ(f.field, "hh");
+  f = solve_failure(R"({"rigid_body":{"mass":1}})");
+  EXPECT_EQ(f.field, "rigid_body.mass");
+  f = solve_failure(R"({"n":3,"n":4})");
+  EXPECT_EQ(f.code, "duplicate_field");
+  EXPECT_EQ(f.field, "n");
+  EXPECT_EQ(solve_failure(R"({"n":3,)").code, "malformed_json");
+  EXPECT_EQ(solve_failure("").code, "malformed_json");
+  EXPECT_EQ(solve_failure("[1,2]").code, "invalid_field");
+  EXPECT_EQ(solve_failure(std::string(100, '[') + std::string(100, ']')).code, "malformed_json");
+}
+
+TEST(JsonCodec, NullMeansAbsentAndZGivesN) {
+  const auto r = solve_request_from_json(parse_body(R"({"n":null,"z":[[0,1],[1,0]]})"), Limits{});
+  EXPECT_EQ(r.n, 2);
+  ASSERT_TRUE(r.z.has_value());
+  EXPECT_EQ((*r.z)(0, 1), 1.0);
+}
+
+TEST(JsonCodec, CliLimitsAcceptAnyN) {
+  const auto r = solve_request_from_json(parse_body(R"({"n":500,"max_iterations":100000})"), Limits::unlimited());
+  EXPECT_EQ(r.n, 500);
+  EXPECT_EQ(r.max_iterations, 100000);
+}
+
+TEST(JsonCodec, SweepFieldsAndGridCap) {
+  const auto r = sweep_request_from_json(
+      parse_body(R"({"methods":["fixed-point","newton-group"],"n":[3,4],"h":[0.5,1],"differential":"exact"})"), Limits{});
+  EXPECT_EQ(r.methods.size(), 2u);
+  EXPECT_EQ(r.n, (std::vector<int>{3, 4}));
+  EXPECT_EQ(r.h, (std::vector<double>{0.5, 1}));
+  auto sweep_failure = [](const std::string& text, Limits limits = {}) {
+    return failure_of([&] { sweep_request_from_json(parse_body(text), limits); });
+  };
+  EXPECT_EQ(sweep_failure(R"({"methods":[]})").field, "methods");
+  EXPECT_EQ(sweep_failure(R"({"methods":["x"]})").field, "methods");
+  EXPECT_EQ(sweep_failure(R"({"n":[3,1]})").field, "n");
+  EXPECT_EQ(sweep_failure(R"({"n":3})").field, "n");
+  EXPECT_EQ(sweep_failure(R"({"h":[0.5,-1]})").field, "h");
+  EXPECT_EQ(sweep_failure(R"({"z":[[1]]})").code, "unknown_field");
+  Limits small;
+  small.max_grid_cells = 10;
+  EXPECT_EQ(sweep_failure(R"({"n":[3,4],"h":[0.5,1]})", small).field, "h");  // 3 methods x 2 x 2 = 12 cells
+  small.max_n = 10;
+  EXPECT_EQ(sweep_failure(R"({"h":[0.5]})", small).field, "n");  // the default n goes to 15
+}
+
+TEST(JsonCodec, IntegrateAndWorkPrecision) {
+  const auto r = integrate_request_from_json(
+      parse_body(R"({"problem":"rigid-body","h":0.1,"t_end":2,"integrator":"dirk-cg2","frames":5})"), Limits{});
+  EXPECT_EQ(r.integrator, Integrator::dirk_cg2);
+  EXPECT_EQ(r.t_end, 2);
+  EXPECT_EQ(r.frames, 5);
+  auto integrate_failure = [](const std::string& text) {
+    return failure_of([&] { integrate_request_from_json(parse_body(text), Limits{}); });
+  };
+  EXPECT_EQ(integrate_failure(R"({"t_end":0})").field, "t_end");
+  EXPECT_EQ(integrate_failure(R"({"integrator":"rk4"})").field, "integrator");
+  EXPECT_EQ(integrate_failure(R"({"frames":-1})").field, "frames");
+  EXPECT_EQ(integrate_failure(R"({"h":1e-6,"t_end":1000})").field, "h");  // 1e9 steps
+  const auto w = work_precision_request_from_json(
+      parse_body(R"({"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"}],"h":[0.1,0.05]})"),
+      Limits{});
+  ASSERT_EQ(w.choices.size(), 1u);
+  EXPECT_EQ(w.h.size(), 2u);
+  auto wp_failure = [](const std::string& text) {
+    return failure_of([&] { work_precision_request_from_json(parse_body(text), Limits{}); });
+  };
+  EXPECT_EQ(wp_failure(R"({"choices":[{"method":"x"}]})").field, "choices[0].method");
+  EXPECT_EQ(wp_failure(R"({"choices":[{"solver":"x"}]})").field, "choices[0].solver");
+  EXPECT_EQ(wp_failure(R"({"choices":[]})").field, "choices");
+}
+
+TEST(JsonCodec, SweepResultRoundTrips) {
+  SweepResult s;
+  SweepCell c;
+  c.method = Method::fixed_point;
+  c.n = 3;
+  c.h = 0.5;
+  c.status = Status::diverged;
+  c.reason = "grew";
+  c.iterations = 7;
+  c.residual = std::numeric_limits<double>::infinity();
+  s.cells.push_back(c);
+  const json j = to_json(s);
+  EXPECT_TRUE(j["cells"][0]["residual"].is_null());
+  EXPECT_TRUE(j["cells"][0]["rate"].is_null());
+  const SweepResult back = sweep_result_from_json(parse_body(dump(j)), Limits{});
+  ASSERT_EQ(back.cells.size(), 1u);
+  EXPECT_EQ(back.cells[0].status, Status::diverged);
+  EXPECT_EQ(back.cells[0].iterations, 7);
+  EXPECT_TRUE(std::isnan(back.cells[0].residual));
+}
+
+TEST(JsonCodec, OutputNeverContainsNanOrInf) {
+  SolveResult r;
+  r.residual = std::nan("");
+  r.rate = std::numeric_limits<double>::infinity();
+  r.y = Eigen::MatrixXd::Constant(2, 2, std::nan(""));
+  TraceRecord t;
+  t.residual = -std::numeric_limits<double>::infinity();
+  r.trace.push_back(t);
+  const std::string text = dump(to_json(r, false));
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  EXPECT_EQ(text.find("inf"), std::string::npos);
+  EXPECT_TRUE(parse_body(text)["residual"].is_null());
+  // Invalid UTF-8 in a reason is replaced, not thrown.
+  r.reason = "bad \xff byte";
+  EXPECT_NO_THROW(dump(to_json(r, false)));
+}
+
+TEST(JsonCodec, ErrorBodyShape) {
+  const json e = error_body("invalid_field", "h", "h must be a finite number in (0, 1e6]");
+  EXPECT_EQ(dump(e), R"({"error":{"code":"invalid_field","field":"h","message":"h must be a finite number in (0, 1e6]"}})");
+  EXPECT_TRUE(error_body("not_found", "", "x")["error"]["field"].is_null());
+}
+
+TEST(QueryParams, MirrorJsonFields) {
+  const std::multimap<std::string, std::string> params{
+      {"problem", "paper-linear"}, {"n", "3"}, {"h", "0.5"}, {"include_iterates", "true"},
+      {"methods", "fixed-point,newton-group"}, {"z", "[[1,0],[0,1]]"}, {"seed", "12"}};
+  const json j = query_to_json(params);
+  EXPECT_EQ(j["problem"], "paper-linear");
+  EXPECT_EQ(j["n"], 3);
+  EXPECT_TRUE(j["n"].is_number_integer());
+  EXPECT_EQ(j["h"], 0.5);
+  EXPECT_EQ(j["include_iterates"], true);
+  EXPECT_EQ(j["methods"], json({"fixed-point", "newton-group"}));
+  EXPECT_EQ(j["z"][1][1], 1);
+  const std::multimap<std::string, std::string> twice{{"n", "3"}, {"n", "4"}};
+  EXPECT_EQ(failure_of([&] { query_to_json(twice); }).code, "duplicate_field");
+  const std::multimap<std::string, std::string> broken{{"z", "[[1,0"}};
+  EXPECT_EQ(failure_of([&] { query_to_json(broken); }).field, "z");
+}
+
+}  // namespace
+}  // namespace lienewton::service

@@ -1,0 +1,115 @@
+#pragma once
+// An in-process lienewton server on an ephemeral port, a temporary web root with a file outside it (for
+// traversal tests), and small client helpers (raw sockets for requests httplib::Client will not send).
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "server/http_server.hpp"
+#include "server/httplib_include.hpp"
+
+namespace lienewton::service::testing {
+
+inline std::filesystem::path make_web_root() {
+  namespace fs = std::filesystem;
+  static int counter = 0;
+  const fs::path base = fs::temp_directory_path() / ("lienewton-web-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+  fs::create_directories(base / "web" / "sub");
+  std::ofstream(base / "web" / "index.html") << "<!doctype html><title>lienewton</title>";
+  std::ofstream(base / "web" / "app.js") << "export const answer = 42;\n";
+  std::ofstream(base / "web" / "sub" / "index.html") << "sub";
+  std::ofstream(base / "secret.txt") << "SECRET";
+  std::error_code ec;
+  fs::create_symlink(base / "secret.txt", base / "web" / "link.txt", ec);
+  return base;
+}
+
+struct TestServer {
+  explicit TestServer(ServerOptions options = {}) {
+    base = make_web_root();
+    options.host = "127.0.0.1";
+    options.port = 0;
+    options.web_root = (base / "web").string();
+    options.log = &log;
+    server = std::make_unique<HttpServer>(options);
+    port = server->start_background();
+  }
+  ~TestServer() {
+    server->stop();
+    server.reset();
+    std::error_code ec;
+    std::filesystem::remove_all(base, ec);
+  }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(30, 0);
+    return c;
+  }
+  std::filesystem::path base;
+  std::ostringstream log;  // written only by the server's workers after start; read after stop
+  std::unique_ptr<HttpServer> server;
+  int port = 0;
+};
+
+// Sends raw bytes and returns everything the server answers until it closes (or 5 s pass).
+inline std::string raw_http(int port, const std::string& request) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    ::close(fd);
+    return "";
+  }
+  timeval tv{5, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  ::send(fd, request.data(), request.size(), MSG_NOSIGNAL);
+  std::string out;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) break;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return out;
+}
+
+inline int raw_status(const std::string& response) {
+  if (response.size() < 12) return -1;
+  return std::stoi(response.substr(9, 3));
+}
+
+// POSTs and feeds each complete line of the (streamed) answer to on_line; on_line returning false aborts.
+inline httplib::Result post_lines(httplib::Client& client, const std::string& path, const std::string& body,
+                                  const std::string& accept, const std::function<bool(const std::string&)>& on_line) {
+  httplib::Request req;
+  req.method = "POST";
+  req.path = path;
+  req.headers = {{"Accept", accept}, {"Content-Type", "application/json"}};
+  req.body = body;
+  auto pending = std::make_shared<std::string>();
+  req.content_receiver = [pending, on_line](const char* data, size_t n, uint64_t, uint64_t) {
+    pending->append(data, n);
+    std::size_t nl;
+    while ((nl = pending->find('\n')) != std::string::npos) {
+      const std::string line = pending->substr(0, nl);
+      pending->erase(0, nl + 1);
+      if (!line.empty() && !on_line(line)) return false;
+    }
+    return true;
+  };
+  return client.send(req);
+}
+
+}  // namespace lienewton::service::testing
