@@ -5,13 +5,6 @@
 
 namespace lienewton::render {
 
-Color mix(Color a, Color b, double t) {
-  auto channel = [t](std::uint8_t x, std::uint8_t y) {
-    return static_cast<std::uint8_t>(std::lround(x + (static_cast<double>(y) - x) * t));
-  };
-  return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b), channel(a.a, b.a)};
-}
-
 Color viridis(double t) {
   // Degree-6 polynomial fit of matplotlib's 256-entry table (Matt Zucker's, within about 3/255 per
   // channel): shorter than the table, and the tests evaluate the same function.

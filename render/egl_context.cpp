@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <cstdio>
 #include <mutex>
 #include <string>
 
@@ -13,11 +14,9 @@ namespace lienewton::render {
 namespace {
 
 std::string egl_error(const char* what) {
-  return std::string("EGL: ") + what + " (error 0x" + [] {
-    char hex[16];
-    std::snprintf(hex, sizeof hex, "%x", static_cast<unsigned>(eglGetError()));
-    return std::string(hex);
-  }() + ")";
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%x", static_cast<unsigned>(eglGetError()));
+  return std::string("EGL: ") + what + " (error " + code + ")";
 }
 
 // One display per process, initialised once and kept: eglTerminate would destroy every worker's context.
