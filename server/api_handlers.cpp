@@ -75,7 +75,11 @@ void ApiHandlers::throw_stopped(const StopCheck& stop) const {
 }
 
 json ApiHandlers::body_json(const RouteSpec& route, const httplib::Request& req) const {
-  if (route.method == "GET") return query_to_json(req.params);
+  if (route.method == "GET") {
+    // The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
+    if (route.id == RouteId::render_heatmap_get) return query_to_json(req.params, {"methods", "n", "h"});
+    return query_to_json(req.params);
+  }
   return parse_body(req.body);
 }
 

@@ -203,6 +203,9 @@ json parse_body(std::string_view text) {
     return json::parse(text.begin(), text.end(), check);
   } catch (const json::parse_error& e) {
     throw FieldError("malformed_json", "", "the request body is not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  } catch (const json::exception&) {
+    // e.g. out_of_range.406: a number literal that overflows a double (1e400) would be Inf.
+    throw FieldError("malformed_json", "", "the request body holds a number outside the range of a double");
   }
 }
 

@@ -8,15 +8,19 @@ json scalar(const std::string& text) {
   if (text == "true") return true;
   if (text == "false") return false;
   if (!text.empty() && (text[0] == '-' || (text[0] >= '0' && text[0] <= '9'))) {
-    json parsed = json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (parsed.is_number()) return parsed;
+    try {
+      json parsed = json::parse(text);
+      if (parsed.is_number()) return parsed;
+    } catch (const json::exception&) {
+      // not a number (or one that overflows a double): the codec reports it as the field's type error
+    }
   }
   return text;
 }
 
 }  // namespace
 
-json query_to_json(const std::multimap<std::string, std::string>& params) {
+json query_to_json(const std::multimap<std::string, std::string>& params, const std::set<std::string>& list_fields) {
   json out = json::object();
   for (const auto& [key, value] : params) {
     if (out.contains(key)) throw FieldError("duplicate_field", key, "duplicate parameter " + key);
@@ -36,6 +40,8 @@ json query_to_json(const std::multimap<std::string, std::string>& params) {
         start = comma + 1;
       }
       out[key] = std::move(list);
+    } else if (list_fields.count(key)) {
+      out[key] = json::array({scalar(value)});
     } else {
       out[key] = scalar(value);
     }

@@ -80,6 +80,13 @@ inline std::string raw_http(int port, const std::string& request) {
     const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
     if (n <= 0) break;
     out.append(buf, static_cast<std::size_t>(n));
+    // Stop at the end of the first response instead of waiting for the keep-alive timeout.
+    const auto end = out.find("\r\n\r\n");
+    const auto cl = out.find("Content-Length: ");
+    if (end != std::string::npos && cl != std::string::npos && cl < end) {
+      const std::size_t length = std::stoul(out.substr(cl + 16, out.find("\r\n", cl) - cl - 16));
+      if (out.size() >= end + 4 + length) break;
+    }
   }
   ::close(fd);
   return out;
