@@ -71,7 +71,7 @@ class Equation {
     Point p;
     p.v_form = group_.exp_form(v);
     p.v = v;
-    p.y = group_.compose(z_, group_.element(p.v_form));
+    p.y = group_.times_exp_form(z_, p.v_form);
     p.algebra_angle = group_.angle(p.v_form);
     p.angle = principal_angle(p.algebra_angle);
     if (field_) {
@@ -104,7 +104,7 @@ class Equation {
   }
 
   // The fixed-point map (1.2): y -> z exp(h g(y)).
-  Element fixed_point_map(const Point& p) const { return group_.compose(z_, group_.exp(p.hg)); }
+  Element fixed_point_map(const Point& p) const { return group_.times_exp(z_, p.hg); }
 
   // y solves y = z exp(h g(y)) to rounding (checked without log), but h g(y) has a rotation angle beyond pi,
   // so log(z^-1 y) != h g(y): a true solution of (1.1) that f of (3.6) cannot see.
@@ -113,7 +113,7 @@ class Equation {
     const Vector w = h_ * field_->g(y);
     const Spectral form = group_.exp_form(w);
     if (!(group_.angle(form) > so3::kPi)) return false;
-    const Element defect = group_.compose(z_, group_.element(form)) - y;
+    const Element defect = group_.times_exp_form(z_, form) - y;
     constexpr double eps = std::numeric_limits<double>::epsilon();
     return defect.norm() <= 256.0 * eps * std::sqrt(double(group_.dim())) * (1.0 + w.norm());
   }

@@ -2,7 +2,8 @@
 // The groups the solvers run on, behind one compile-time interface:
 //   Element (group element), Vector (algebra coordinates), Operator (q x q matrix on coordinates),
 //   Spectral (what log/exp computed that dexp/dexpinv can reuse: the decomposition of z^-1 y serves both
-//   log and dexpinv), compose/inverse, exp/log through Spectral, dexp/dexpinv, hat/vee, bracket.
+//   log and dexpinv), compose/inverse, exp/log through Spectral, dexp/dexpinv, hat/vee, bracket, and
+//   times_exp(y, v) = y exp(v), formed as y + y (exp(v) - I) to keep long products on the group.
 // SO3Group uses fixed-size types (no heap allocation), SONGroup the spectral forms of son.hpp, RnGroup the
 // abelian group R^n (exp = log = identity), where both Newton versions must reduce to classical Newton.
 #include <Eigen/Dense>
@@ -39,6 +40,8 @@ struct SO3Group {
   Vector dexp(const Spectral& s, const Vector& u) const { return so3::dexp(s, u); }
   Vector dexpinv(const Spectral& s, const Vector& u) const { return so3::dexpinv(s, u); }
   Element exp(const Vector& v) const { return so3::exp(v); }
+  Element times_exp(const Element& y, const Vector& v) const { return y + y * so3::expm1(v); }
+  Element times_exp_form(const Element& y, const Spectral& s) const { return times_exp(y, s); }
   bool log_defined(const Spectral& s) const { return s.norm() <= so3::kPi - son::kLogDomainMargin; }
 };
 
@@ -69,6 +72,8 @@ struct SONGroup {
   Vector dexp(const Spectral& s, const Vector& u) const { return vee(son::dexp(s, hat(u))); }
   Vector dexpinv(const Spectral& s, const Vector& u) const { return vee(son::dexpinv(s, hat(u))); }
   Element exp(const Vector& v) const { return son::exp(hat(v)); }
+  Element times_exp(const Element& y, const Vector& v) const { return exp_form(v).times_rotation(y); }
+  Element times_exp_form(const Element& y, const Spectral& s) const { return s.times_rotation(y); }
   bool log_defined(const Spectral& s) const { return s.max_angle() <= so3::kPi - son::kLogDomainMargin; }
 
  private:
@@ -103,6 +108,8 @@ struct RnGroup {
   Vector dexp(const Spectral&, const Vector& u) const { return u; }
   Vector dexpinv(const Spectral&, const Vector& u) const { return u; }
   Element exp(const Vector& v) const { return v; }
+  Element times_exp(const Element& y, const Vector& v) const { return y + v; }
+  Element times_exp_form(const Element& y, const Spectral& s) const { return y + s; }
   bool log_defined(const Spectral&) const { return true; }
 
  private:

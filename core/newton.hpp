@@ -7,6 +7,8 @@
 // reciprocal condition number is checked first (singular_differential).
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
@@ -36,6 +38,12 @@ bool newton_step(const Operator& d, const Vector& f, Vector& u) {
   if (!(lu.rcond() >= kSingularRcond)) return false;
   u = -lu.solve(f);
   return true;
+}
+
+inline std::string angle_detail(double angle, int n) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", n, angle, so3::kPi - angle);
+  return buf;
 }
 
 template <class Element>
@@ -68,7 +76,8 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
   for (;;) {
     const Point p = eq.at(y);
     if (!p.in_domain) {
-      return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, Status::left_log_domain, y)), y);
+      const Status s = detail::classify_failure(eq, Status::left_log_domain, y);
+      return detail::with_final_iterate(monitor.finish(s, detail::angle_detail(p.angle, monitor.iteration())), y);
     }
     if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) {
       return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, *stop, y)), y);
@@ -77,7 +86,7 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
     if (opt.differential == Differential::finite_difference) {
       const double t = detail::difference_step(p.v.size() > 0 ? p.v.norm() : 0.0);
       for (int i = 0; i < group.dim(); ++i) {
-        const Point q = eq.at(group.compose(y, group.exp(t * group.unit(i))));
+        const Point q = eq.at(group.times_exp(y, t * group.unit(i)));
         if (!q.in_domain)
           return detail::with_final_iterate(monitor.finish(Status::left_log_domain, "in a difference quotient"), y);
         d.col(i) = (q.f - p.f) / t;
@@ -89,7 +98,7 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
       const Status s = d.allFinite() ? Status::singular_differential : Status::non_finite;
       return detail::with_final_iterate(monitor.finish(s), y);
     }
-    const typename G::Element next = group.compose(y, group.exp(u));
+    const typename G::Element next = group.times_exp(y, u);
     step = u.norm();
     if (!next.allFinite()) return detail::with_final_iterate(monitor.finish(Status::non_finite), y);
     y = next;
@@ -142,7 +151,8 @@ SolveResult fixed_point(const Equation<G>& eq, const SolverOptions& opt, const T
   for (;;) {
     const Point p = eq.at(y);
     if (!p.in_domain) {
-      return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, Status::left_log_domain, y)), y);
+      const Status s = detail::classify_failure(eq, Status::left_log_domain, y);
+      return detail::with_final_iterate(monitor.finish(s, detail::angle_detail(p.angle, monitor.iteration())), y);
     }
     const double scale = detail::scale_of<G>(p);
     if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, scale)) {

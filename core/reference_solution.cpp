@@ -12,14 +12,14 @@ template <class G>
 typename G::Element rkmk4_step(const G& group, const VectorField<G>& field, const typename G::Element& y, double h) {
   using Vector = typename G::Vector;
   auto stage = [&](const Vector& offset) {
-    const Vector g = field.g(group.compose(y, group.exp(offset)));
+    const Vector g = field.g(group.times_exp(y, offset));
     return Vector(h * group.dexpinv(group.exp_form(offset), g));
   };
   const Vector k1 = h * field.g(y);
   const Vector k2 = stage(0.5 * k1);
   const Vector k3 = stage(0.5 * k2);
   const Vector k4 = stage(k3);
-  return group.compose(y, group.exp((k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0));
+  return group.times_exp(y, (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0);
 }
 
 template <class G>

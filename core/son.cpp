@@ -114,6 +114,18 @@ Mat SpectralForm::rotation() const {
   return q * d * q.transpose();
 }
 
+Mat SpectralForm::times_rotation(const Mat& y) const {
+  const int n = static_cast<int>(q.rows());
+  Mat d = Mat::Zero(n, n);
+  for (const auto& b : blocks)
+    if (b.size == 2) {
+      const double s = std::sin(0.5 * b.theta);
+      d.block<2, 2>(b.start, b.start) = rotation2(b.theta) - Eigen::Matrix2d::Identity();
+      d(b.start, b.start) = d(b.start + 1, b.start + 1) = -2.0 * s * s;  // cos - 1 without cancellation
+    }
+  return y + (y * q) * d * q.transpose();
+}
+
 SpectralForm spectral_form_of_skew(const Mat& v) {
   Eigen::RealSchur<Mat> schur(v);
   SpectralForm s;

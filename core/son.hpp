@@ -47,6 +47,8 @@ struct SpectralForm {
   double max_angle() const;  // largest |theta|
   Mat skew() const;          // v = Q blockdiag(theta J, 0) Q^T, exactly skew
   Mat rotation() const;      // exp(v) = Q blockdiag(rot theta, 1) Q^T
+  // y exp(v) as y + (y Q) (blockdiag(rot theta, 1) - I) Q^T: see so3::expm1 for why not y * rotation().
+  Mat times_rotation(const Mat& y) const;
 };
 
 SpectralForm spectral_form_of_skew(const Mat& v);

@@ -1,0 +1,108 @@
+// The implicit integrators: orders from fitted slopes, conservation on the rigid body, work-precision data.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "core/integrate.hpp"
+#include "core/work_precision.hpp"
+
+namespace lienewton {
+namespace {
+
+// Least-squares slope of log(error) against log(h).
+double fitted_order(Integrator integrator, ProblemKind problem, int n, const std::vector<double>& hs) {
+  std::vector<double> x, y;
+  for (double h : hs) {
+    IntegrateRequest req;
+    req.problem = problem;
+    req.n = n;
+    req.h = h;
+    req.t_end = 1.0;
+    req.integrator = integrator;
+    const IntegrateResult r = integrate(req);
+    EXPECT_EQ(r.status, Status::converged) << r.reason;
+    x.push_back(std::log(h));
+    y.push_back(std::log(*r.global_error));
+  }
+  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+  const double my = std::accumulate(y.begin(), y.end(), 0.0) / y.size();
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) * (x[i] - mx);
+  }
+  return sxy / sxx;
+}
+
+const std::vector<double> kAsymptoticSteps = {1.0 / 16, 1.0 / 32, 1.0 / 64, 1.0 / 128};
+
+TEST(Integrators, ImplicitEulerHasOrderOne) {
+  EXPECT_NEAR(fitted_order(Integrator::implicit_euler, ProblemKind::rigid_body, 3, kAsymptoticSteps), 1.0, 0.15);
+  EXPECT_NEAR(fitted_order(Integrator::implicit_euler, ProblemKind::paper_linear, 5, kAsymptoticSteps), 1.0, 0.15);
+}
+
+TEST(Integrators, DirkCrouchGrossmanHasOrderTwo) {
+  EXPECT_NEAR(fitted_order(Integrator::dirk_cg2, ProblemKind::rigid_body, 3, kAsymptoticSteps), 2.0, 0.15);
+  EXPECT_NEAR(fitted_order(Integrator::dirk_cg2, ProblemKind::paper_linear, 6, kAsymptoticSteps), 2.0, 0.15);
+}
+
+TEST(Integrators, RigidBodyStaysOnSO3Over10kSteps) {
+  for (Integrator integrator : kAllIntegrators) {
+    for (Method method : {Method::newton_group, Method::newton_algebra}) {
+      IntegrateRequest req;
+      req.h = 1e-3;
+      req.t_end = 10.0;
+      req.integrator = integrator;
+      req.method = method;
+      req.reference = false;
+      const IntegrateResult r = integrate(req);
+      ASSERT_EQ(r.status, Status::converged) << r.reason;
+      ASSERT_EQ(r.steps.size(), 10000u);
+      EXPECT_LT(r.orthogonality_error, 1e-13) << to_string(integrator) << " " << to_string(method);
+    }
+  }
+  // dirk-cg2 conserves the energy far better than implicit Euler, which dissipates it at O(h).
+  IntegrateRequest req;
+  req.h = 1e-3;
+  req.t_end = 10.0;
+  req.reference = false;
+  req.integrator = Integrator::dirk_cg2;
+  EXPECT_LT(*integrate(req).energy_drift, 1e-10);
+  req.integrator = Integrator::implicit_euler;
+  EXPECT_GT(*integrate(req).energy_drift, 1e-4);
+}
+
+TEST(Integrators, FramesAndStepRecords) {
+  IntegrateRequest req;
+  req.h = 0.05;
+  req.frames = 4;
+  const IntegrateResult r = integrate(req);
+  ASSERT_EQ(r.frames.size(), 5u);
+  EXPECT_EQ(r.frame_times.front(), 0.0);
+  EXPECT_DOUBLE_EQ(r.frame_times.back(), 1.0);
+  EXPECT_TRUE(r.frames.back().isApprox(r.y, 0.0));
+  for (const auto& s : r.steps) {
+    EXPECT_GE(s.iterations, 1);
+    EXPECT_LE(s.residual, req.tol);
+  }
+}
+
+TEST(WorkPrecision, OneSeriesPerChoiceErrorsShrinkWithH) {
+  WorkPrecisionRequest req;
+  req.choices = {{Integrator::implicit_euler, Method::newton_group, Differential::exact},
+                 {Integrator::dirk_cg2, Method::newton_algebra, Differential::finite_difference}};
+  req.h = {0.25, 0.125, 0.0625};
+  const WorkPrecisionResult r = work_precision(req);
+  ASSERT_EQ(r.series.size(), 2u);
+  for (const auto& s : r.series) {
+    ASSERT_EQ(s.points.size(), 3u);
+    for (std::size_t k = 1; k < s.points.size(); ++k) EXPECT_LT(s.points[k].error, s.points[k - 1].error);
+    for (const auto& p : s.points) EXPECT_GT(p.iterations, 0);
+  }
+  // Order 2 beats order 1 at the same h.
+  EXPECT_LT(r.series[1].points.back().error, r.series[0].points.back().error);
+}
+
+}  // namespace
+}  // namespace lienewton

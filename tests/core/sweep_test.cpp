@@ -1,0 +1,107 @@
+// The paper's section-5 experiment (Figures 5.1 and 5.2) as a sweep, and its qualitative claims.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "core/sweep.hpp"
+
+namespace lienewton {
+namespace {
+
+// The full default grid (3 methods x N = 2..15 x h = 2^-10..2^10) with the exact differential, once per problem.
+const SweepResult& default_sweep(ProblemKind problem) {
+  static std::map<ProblemKind, SweepResult> cache;
+  auto it = cache.find(problem);
+  if (it == cache.end()) {
+    SweepRequest req;
+    req.problem = problem;
+    req.differential = Differential::exact;
+    it = cache.emplace(problem, sweep(req)).first;
+  }
+  return it->second;
+}
+
+class PaperClaims : public ::testing::TestWithParam<ProblemKind> {};
+
+TEST_P(PaperClaims, GridIsThePapers) {
+  const SweepResult& s = default_sweep(GetParam());
+  ASSERT_EQ(s.cells.size(), 3u * 14u * 21u);
+  EXPECT_EQ(s.cells.front().method, Method::fixed_point);
+  EXPECT_EQ(s.cells.front().n, 2);
+  EXPECT_EQ(s.cells.front().h, std::ldexp(1.0, -10));
+  EXPECT_EQ(s.cells.back().method, Method::newton_algebra);
+  EXPECT_EQ(s.cells.back().n, 15);
+  EXPECT_EQ(s.cells.back().h, 1024.0);
+}
+
+TEST_P(PaperClaims, FixedPointFailsForLargeH) {
+  for (const auto& c : default_sweep(GetParam()).cells)
+    if (c.method == Method::fixed_point && c.h >= 4.0) EXPECT_NE(c.status, Status::converged) << c.n << " " << c.h;
+}
+
+TEST_P(PaperClaims, NewtonConvergesQuadraticallyWhereItConverges) {
+  std::vector<double> rates;
+  for (const auto& c : default_sweep(GetParam()).cells)
+    if (c.method != Method::fixed_point && c.status == Status::converged && c.rate) rates.push_back(*c.rate);
+  ASSERT_GT(rates.size(), 100u);
+  std::sort(rates.begin(), rates.end());
+  // The estimate r uses the last three residuals before convergence; where Newton wandered at large h
+  // those are not yet asymptotic, so r is a distribution centred on 2, as in the paper's figures.
+  const double median = rates[rates.size() / 2];
+  EXPECT_GT(median, 1.85);
+  EXPECT_LT(median, 2.15);
+  const auto quadratic = std::count_if(rates.begin(), rates.end(), [](double r) { return r > 1.5 && r < 2.6; });
+  EXPECT_GT(static_cast<double>(quadratic), 0.85 * rates.size());  // measured: 95% (linear), 88% (sine)
+}
+
+TEST_P(PaperClaims, VersionOneConvergesOnMoreCellsThanVersionTwoAtSmallN) {
+  int v1 = 0, v2 = 0;
+  for (const auto& c : default_sweep(GetParam()).cells) {
+    if (c.n < 3 || c.n > 6 || c.status != Status::converged) continue;
+    if (c.method == Method::newton_group) ++v1;
+    if (c.method == Method::newton_algebra) ++v2;
+  }
+  EXPECT_GT(v1, v2);
+}
+
+TEST_P(PaperClaims, EveryMethodConvergesForSmallH) {
+  for (const auto& c : default_sweep(GetParam()).cells)
+    if (c.h <= 1.0 / 64) EXPECT_EQ(c.status, Status::converged) << to_string(c.method) << " n=" << c.n << " h=" << c.h;
+}
+
+INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::paper_linear, ProblemKind::paper_sine));
+
+TEST(Sweep, ResultDoesNotDependOnThreadCount) {
+  SweepRequest req;
+  req.problem = ProblemKind::paper_sine;
+  req.differential = Differential::finite_difference;
+  req.n = {2, 5, 9};
+  req.h = {0.125, 2.0, 64.0};
+  req.threads = 1;
+  const SweepResult one = sweep(req);
+  req.threads = 3;
+  const SweepResult three = sweep(req);
+  ASSERT_EQ(one.cells.size(), three.cells.size());
+  for (std::size_t i = 0; i < one.cells.size(); ++i) {
+    EXPECT_EQ(one.cells[i].status, three.cells[i].status);
+    EXPECT_EQ(one.cells[i].iterations, three.cells[i].iterations);
+    EXPECT_EQ(one.cells[i].residual, three.cells[i].residual);  // bit for bit
+  }
+}
+
+TEST(Sweep, CancelStopsWithinOneIterationAndKeepsFinishedCellsInOrder) {
+  SweepRequest req;
+  req.n = {4, 8};
+  req.threads = 2;
+  int cells = 0;
+  const SweepResult s = sweep(req, [&](const SweepCell&) { return ++cells < 5; });
+  EXPECT_GE(s.cells.size(), 5u);
+  EXPECT_LT(s.cells.size(), 3u * 2u * 21u);
+  int polls = 0;
+  const SweepResult none = sweep(req, {}, [&] { return ++polls < 10; });
+  EXPECT_LT(none.cells.size(), 3u);
+}
+
+}  // namespace
+}  // namespace lienewton
