@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Quick start, step 2: installs what the tests need too (Chromium, clang, npm packages from the lockfile),
+# builds and runs the whole suite through ctest.
+#   scripts/test.sh              Release build in build/
+#   scripts/test.sh --sanitize   the same tests in an ASan + UBSan (incl. float-cast-overflow) build in build-asan/
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+scripts/deps.sh test
+if [ "${1:-}" = --sanitize ]; then
+  dir=build-asan
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIENEWTON_SANITIZE=ON -DLIENEWTON_BENCH=OFF
+else
+  dir=build
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release
+fi
+cmake --build "$dir" -j"$(nproc)"
+ctest --test-dir "$dir" --output-on-failure -j"$(nproc)"
