@@ -1,0 +1,38 @@
+# lienewton-server image. Build stage: Debian bookworm with the same dependency script as the README and CI
+# (scripts/deps.sh build), CMake Release build. Runtime stage: bookworm-slim with only the shared libraries
+# the binaries need (RUNTIME_LIBS, checked against ldd by scripts/check_runtime_libs.sh) and the font the
+# renderer reads (RUNTIME_DATA), the dashboard, a non-root user.
+#   docker build -t lienewton .
+#   docker run --rm -p 8080:8080 lienewton
+FROM debian:bookworm AS build
+WORKDIR /src
+COPY scripts/deps.sh scripts/packages-build.txt scripts/packages-test.txt scripts/
+RUN scripts/deps.sh build && rm -rf /var/lib/apt/lists/*
+COPY . .
+# No -march=native: the image must run on any x86-64 host, not only the build machine.
+RUN cmake -S . -B /build -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_NATIVE=OFF -DLIENEWTON_TESTS=OFF \
+      -DLIENEWTON_BENCH=OFF \
+ && cmake --build /build -j"$(nproc)" --target lienewton lienewton-server
+
+FROM debian:bookworm-slim AS runtime
+# Packages of the NEEDED libraries of lienewton and lienewton-server beyond the base image (libc6,
+# libstdc++6, libgcc-s1); apt brings their own dependencies (LLVM for llvmpipe, OpenSSL, zlib, brotli).
+ARG RUNTIME_LIBS="libcpp-httplib0.11 libosmesa6 libpng16-16 libstb0"
+# Not visible to ldd: the TrueType font the heatmap labels are drawn with.
+ARG RUNTIME_DATA="fonts-dejavu-core"
+RUN apt-get update \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${RUNTIME_LIBS} ${RUNTIME_DATA} \
+ && rm -rf /var/lib/apt/lists/* \
+ && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin lienewton
+COPY --from=build /build/bin/lienewton /build/bin/lienewton-server /opt/lienewton/bin/
+COPY web /opt/lienewton/web
+# The healthcheck reads the same variables as the server, so it probes the address the server listens on.
+ENV LIENEWTON_HOST=0.0.0.0 \
+    LIENEWTON_PORT=8080 \
+    LIENEWTON_WEB_ROOT=/opt/lienewton/web \
+    LP_NUM_THREADS=1
+USER 10001:10001
+EXPOSE 8080
+HEALTHCHECK --interval=10s --timeout=3s --start-period=5s --retries=3 \
+  CMD ["/opt/lienewton/bin/lienewton-server", "--healthcheck"]
+ENTRYPOINT ["/opt/lienewton/bin/lienewton-server", "--host", "0.0.0.0"]

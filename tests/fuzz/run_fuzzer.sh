@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Builds the request-parsing fuzzer with clang (libFuzzer + ASan + UBSan) in build-fuzz/ and runs it for a
+# bounded number of inputs over the committed seed corpus. CI: tests/fuzz/run_fuzzer.sh [runs]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+runs="${1:-20000}"
+build="${LIENEWTON_FUZZ_BUILD:-$root/build-fuzz}"
+cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DLIENEWTON_NATIVE=OFF -DLIENEWTON_BENCH=OFF -DLIENEWTON_TESTS=ON >/dev/null
+cmake --build "$build" -j"$(nproc)" --target lienewton_fuzz_request
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+"$build/tests/fuzz/../../bin/lienewton_fuzz_request" -runs="$runs" -max_len=4096 -timeout=10 "$scratch" "$root/tests/fuzz/corpus"
