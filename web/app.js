@@ -38,8 +38,9 @@ createStabilityPanel(document.querySelector('#stability .panel-body'), {
 });
 createSpeedPanel(document.querySelector('#speed .panel-body'));
 
-const fromHash = tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
-select(fromHash ?? tabs[0], false);
+const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
+select(fromHash() ?? tabs[0], false);
+window.addEventListener('hashchange', () => { const t = fromHash(); if (t) select(t, false); });
 
 // A small liveness light in the header: the dashboard is static, the numbers come from the service.
 const light = document.getElementById('server-state');

@@ -87,7 +87,8 @@ export function residualChart(container, labels) {
   };
 }
 
-// Work-precision: CPU seconds (x) against global error (y), both log, one series per choice.
+// Work-precision: CPU seconds (x) against global error (y), both log, one series per choice. Points only:
+// CPU times of short runs are noisy, and a line in CPU order would zigzag.
 export function workPrecisionChart(container, runs) {
   const tables = runs.map((r) => {
     const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.error))
@@ -96,7 +97,7 @@ export function workPrecisionChart(container, runs) {
   });
   const data = tables.length ? uPlot.join(tables) : [[]];
   const series = [{ label: 'CPU time', value: (u, v) => fmtSeconds(v) }].concat(runs.map((r, i) =>
-    line(r.label, i, { points: { show: true, size: 7 }, spanGaps: true })));
+    line(r.label, i, { points: { show: true, size: 8, fill: SERIES_COLORS[i % SERIES_COLORS.length] }, paths: () => null })));
   const opts = {
     series,
     scales: { x: { time: false, distr: 3, log: 10, range: decades }, y: { distr: 3, log: 10, range: decades } },
@@ -109,17 +110,17 @@ export function workPrecisionChart(container, runs) {
   return plot;
 }
 
-// Rigid-body kinetic energy over time, one series per choice (all share the same step times).
+// Rigid-body energy error over time, |E(t) - E(t1)| / E(t1) on a log axis so that drifts of very different
+// sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same step times.
 export function energyChart(container, times, runs) {
-  const series = [{ label: 't' }].concat(runs.map((r, i) => line(r.label, i)));
+  const series = [{ label: 't' }].concat(runs.map((r, i) => line(r.label, i, { points: { show: true, size: 5 } })));
   const opts = {
     series,
-    scales: { x: { time: false } },
-    axes: [{ label: 'time t' }, { label: '(E(t) \u2212 E(t\u2081)) / E(t\u2081)', size: 80,
-      values: (u, s) => s.map((v) => (v === 0 ? '0' : v.toExponential(1))) }],
+    scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
+    axes: [{ label: 'time t' }, logAxis('|E(t) \u2212 E(t\u2081)| / E(t\u2081)')],
     legend: { live: true },
   };
-  const plot = mount(container, opts, [times, ...runs.map((r) => r.values)]);
+  const plot = mount(container, opts, [times, ...runs.map((r) => r.values.map((v) => positive(Math.abs(v))))]);
   record(container, plot);
   return plot;
 }

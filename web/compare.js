@@ -45,6 +45,7 @@ export function createComparePanel(root) {
         const request = { ...readCommon(form), method, differential, include_iterates: false };
         live.textContent = `Running ${labels[i]} (${i + 1} of ${picks.length})\u2026`;
         const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
+          if (rec.type !== 'iteration') return;
           columns[i].push(rec.residual);
           chart.set(columns);
         } });

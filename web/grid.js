@@ -1,34 +1,9 @@
 // An interactive stability map for one method: a CSS grid of cells (x = log2 h ascending, y = N with the
 // largest at the top) coloured from the sweep JSON. It is keyboard navigable as an ARIA grid with a single
 // tab stop: arrows move, Enter opens the cell in the Solve panel; hover or focus shows the numbers.
+import { cellColor } from './colormap.js';
 import { el } from './dom.js';
-import { STATUSES, label, METHODS } from './labels.js';
-
-const RAMP = [[217, 240, 211], [0, 68, 27]]; // light to dark green for converged cells
-
-function mix(t) {
-  const c = RAMP[0].map((a, i) => Math.round(a + (RAMP[1][i] - a) * Math.min(1, Math.max(0, t))));
-  return `rgb(${c.join(',')})`;
-}
-
-// Where a converged cell sits on the ramp for the chosen metric, 0..1.
-export function metricScale(cells, metric) {
-  const ok = cells.filter((c) => c.status === 'converged');
-  const val = (c) => (metric === 'iterations' ? c.iterations
-    : metric === 'rate' ? c.rate : Math.log10(Math.max(c.residual, 1e-300)));
-  const vals = ok.map(val).filter((v) => v !== null && v !== undefined && Number.isFinite(v));
-  const lo = vals.length ? Math.min(...vals) : 0;
-  const hi = vals.length ? Math.max(...vals) : 1;
-  return { lo, hi, t: (c) => { const v = val(c); return v == null || hi === lo ? 0.5 : (v - lo) / (hi - lo); } };
-}
-
-export function cellColor(cell, scale) {
-  return cell.status === 'converged' ? mix(scale.t(cell)) : (STATUSES[cell.status]?.color ?? '#777');
-}
-
-export function rampCss() {
-  return `linear-gradient(to right, ${mix(0)}, ${mix(1)})`;
-}
+import { METHODS, STATUSES, label } from './labels.js';
 
 export function createGrid({ method, ns, hs, onShow, onOpen }) {
   const cells = new Map(); // `${n}|${hIndex}` -> element
@@ -49,7 +24,7 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
     hs.map((h, j) => el('div', { role: 'columnheader', class: 'col-head' },
       j % 2 === 0 || hs.length < 12 ? String(Math.log2(h)) : '')));
   grid.append(axis);
-  const figure = el('figure', { class: 'map' }, el('figcaption', {}, label(METHODS, method)), grid,
+  const figure = el('figure', { class: 'map' }, el('figcaption', { title: label(METHODS, method) }, label(METHODS, method)), grid,
     el('p', { class: 'axis-title' }, 'log\u2082 h \u2192'));
 
   const data = new WeakMap(); // element -> sweep cell
@@ -86,15 +61,15 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
 
   return {
     element: figure,
-    // Places one sweep cell; returns false if it is not on this grid (another method or grid).
-    set(cell, scale) {
+    // Places one sweep cell coloured for metric over scale; false if the cell belongs to another grid.
+    set(cell, metric, scale) {
       const j = hs.findIndex((h) => Math.abs(h - cell.h) <= 1e-12 * h);
       const c = cells.get(`${cell.n}|${j}`);
       if (!c || cell.method !== method) return false;
       data.set(c, cell);
       c.classList.remove('pending');
       c.dataset.status = cell.status;
-      c.style.background = cellColor(cell, scale);
+      c.style.background = cellColor(cell, metric, scale, STATUSES);
       c.setAttribute('aria-label', `N ${cell.n}, h 2^${Math.log2(cell.h)}: ${cell.status.replace(/_/g, ' ')}, ${cell.iterations} iterations`);
       return true;
     },

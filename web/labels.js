@@ -38,17 +38,17 @@ export const METRICS = [
   ['residual', 'Final residual'],
 ];
 
-// Failure colours are categorical (Okabe-Ito based, colour-blind safe); converged cells use a green ramp.
+// Failure colours: the renderer's (render/colormap.cpp), chosen outside viridis, which colours converged cells.
 export const STATUSES = {
   converged: { color: '#1b7837', text: 'converged: \u2016f(y)\u2016 \u2264 tol' },
-  max_iterations: { color: '#e69f00', text: 'max iterations reached above tol' },
-  diverged: { color: '#d55e00', text: 'diverged: residual or step blew up' },
-  non_finite: { color: '#222222', text: 'non-finite: NaN or Inf appeared' },
-  left_log_domain: { color: '#cc79a7', text: 'left the log domain (angle reached \u03c0)' },
-  singular_differential: { color: '#6a3d9a', text: 'singular Newton system' },
-  stagnated: { color: '#f0e442', text: 'stagnated at the rounding floor' },
-  off_branch: { color: '#56b4e9', text: 'solved, but h g(y) beyond angle \u03c0 (off branch)' },
-  cancelled: { color: '#9e9e9e', text: 'cancelled' },
+  max_iterations: { color: 'rgb(215,48,39)', text: 'max iterations reached above tol' },
+  diverged: { color: 'rgb(40,40,40)', text: 'diverged: residual or step blew up' },
+  non_finite: { color: 'rgb(231,41,138)', text: 'non-finite: NaN or Inf appeared' },
+  left_log_domain: { color: 'rgb(253,141,60)', text: 'left the log domain (angle reached \u03c0)' },
+  singular_differential: { color: 'rgb(140,86,75)', text: 'singular Newton system' },
+  stagnated: { color: 'rgb(158,218,229)', text: 'stagnated at the rounding floor' },
+  off_branch: { color: 'rgb(247,182,210)', text: 'solved, but h g(y) beyond angle \u03c0 (off branch)' },
+  cancelled: { color: 'rgb(120,120,120)', text: 'cancelled, not computed' },
 };
 
 export const SERIES_COLORS = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000',

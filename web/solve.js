@@ -25,7 +25,7 @@ export function createSolvePanel(root) {
     el('figcaption', {}));
   const caption = 'Iterates y\u2099 as rotated frames (server-rendered PNG).';
   const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
-  root.append(form, el('div', { class: 'output' }, live, chartBox, summary, frames, table));
+  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames), table));
 
   const chart = residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
   const start = runner(form, live);
@@ -45,6 +45,7 @@ export function createSolvePanel(root) {
     await start(async (signal, progress) => {
       if (Number.isFinite(request.max_iterations)) progress.max = request.max_iterations;
       const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
+        if (rec.type !== 'iteration') return;
         records.push(rec);
         progress.value = rec.iteration;
         live.textContent = `Iteration ${rec.iteration}: \u2016f\u2016 = ${fmtExp(rec.residual)}`;

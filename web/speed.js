@@ -43,9 +43,11 @@ export function createSpeedPanel(root) {
   const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
   const energyBox = el('div', { class: 'chart', id: 'energy-chart' });
   const energyFig = el('section', { class: 'energy', hidden: true },
-    el('h3', {}, 'Rigid body: energy over time'), energyBox);
+    el('h3', {}, 'Rigid body: energy error over time'), energyBox);
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
-  root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'), wpBox, energyFig, tableBox));
+  root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
+    el('p', { class: 'hint' }, 'Each point is one step size h: its CPU time and its global error at t_end.'),
+    wpBox, energyFig, tableBox));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {

@@ -6,7 +6,8 @@ import { el } from './dom.js';
 import { actions, checkboxes, number, range, select } from './fields.js';
 import { checkedValues, runner, value } from './form.js';
 import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from './labels.js';
-import { createGrid, metricScale, rampCss } from './grid.js';
+import { NO_VALUE, metricScale, metricValue, rampCss } from './colormap.js';
+import { createGrid } from './grid.js';
 import { statusBadge } from './summary.js';
 
 const METHOD_ORDER = METHODS.map(([m]) => m);
@@ -47,9 +48,10 @@ export function createStabilityPanel(root, { openSolve }) {
   let imageUrl = null;
 
   function paint() {
-    const scale = metricScale(last.cells, value(form, 'metric'));
-    for (const c of last.cells) last.grids.find((g) => g.set(c, scale));
-    drawLegend(legend, last.cells, scale, value(form, 'metric'));
+    const metric = value(form, 'metric');
+    const scale = metricScale(last.cells, metric);
+    for (const c of last.cells) last.grids.find((g) => g.set(c, metric, scale));
+    drawLegend(legend, last.cells, scale, metric);
   }
 
   async function renderImage(signal) {
@@ -96,7 +98,9 @@ export function createStabilityPanel(root, { openSolve }) {
         if (rec.type !== 'cell') return;
         const { type, ...cell } = rec;
         last.cells.push(cell);
-        grids.find((g) => g.set(cell, { t: () => 0.5 }));
+        // Provisional colours on the range so far; paint() recolours on the final range.
+        const metric = value(form, 'metric');
+        grids.find((g) => g.set(cell, metric, metricScale(last.cells, metric)));
         progress.value = last.cells.length;
         live.textContent = `${last.cells.length} of ${total} cells solved\u2026`;
       } });
@@ -125,11 +129,15 @@ function cellOrder(a, b) {
 function drawLegend(box, cells, scale, metric) {
   const counts = {};
   for (const c of cells) counts[c.status] = (counts[c.status] ?? 0) + 1;
+  const noValue = cells.filter((c) => c.status === 'converged' && metricValue(c, metric) === null).length;
   const fmt = (v) => (metric === 'residual' ? `1e${v.toFixed(1)}` : metric === 'rate' ? v.toFixed(2) : String(v));
   box.replaceChildren(
     el('div', { class: 'ramp' }, el('span', {}, `converged, ${label(METRICS, metric).toLowerCase()}: ${fmt(scale.lo)}`),
       el('span', { class: 'ramp-bar', style: `background:${rampCss()}` }), el('span', {}, fmt(scale.hi))),
-    el('ul', { class: 'swatches' }, Object.entries(STATUSES).filter(([s]) => s !== 'converged').map(([s, info]) =>
+    el('ul', { class: 'swatches' },
+      el('li', { class: noValue ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${NO_VALUE}` }),
+        `converged, no ${label(METRICS, metric).toLowerCase()} (${noValue})`),
+      Object.entries(STATUSES).filter(([s]) => s !== 'converged').map(([s, info]) =>
       el('li', { class: counts[s] ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${info.color}` }),
         `${info.text} (${counts[s] ?? 0})`))));
 }

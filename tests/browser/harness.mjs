@@ -30,7 +30,7 @@ function freePort() {
 export async function startServer(binary, webRoot, { timeoutMs = 20000 } = {}) {
   if (!existsSync(binary)) throw new Error(`server binary not found: ${binary}`);
   const port = await freePort();
-  const child = spawn(binary, ['--host', '127.0.0.1', '--port', String(port), '--web-root', webRoot, '--threads', '2'],
+  const child = spawn(binary, ['--host', '127.0.0.1', '--port', String(port), '--web-root', webRoot],
     { stdio: ['ignore', 'pipe', 'pipe'] });
   started.push(() => child.exitCode === null && child.kill('SIGKILL'));
   process.on('exit', () => child.exitCode === null && child.kill('SIGKILL'));
