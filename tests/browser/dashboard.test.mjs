@@ -38,6 +38,11 @@ const api = async (path, body) => {
     body: JSON.stringify(body) });
   return { status: res.status, body: await res.json() };
 };
+const ndjson = async (path, body) => {
+  const res = await fetch(base + path, { method: 'POST', body: JSON.stringify(body),
+    headers: { 'Content-Type': 'application/json', Accept: 'application/x-ndjson' } });
+  return (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+};
 const shot = (name, fullPage = true) => page.screenshot({ path: join(shots, `${name}.png`), fullPage });
 const tab = (name) => page.getByRole('tab', { name }).click();
 const text = (selector) => page.locator(selector).innerText();
@@ -67,11 +72,13 @@ test('page loads with no console errors and nothing fetched from outside', async
 test('a solve streams its trace; the chart ends with iterations + 1 points', async () => {
   const panel = page.locator('#solve');
   await panel.getByLabel('Method').selectOption('fixed-point');
-  const response = page.waitForResponse((r) => r.url().endsWith('/api/v1/solve'));
+  const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/solve'));
   await panel.getByRole('button', { name: 'Run' }).click();
-  const res = await response;
-  assert.match(res.headers()['content-type'], /application\/x-ndjson/);
-  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const request = await sent;
+  assert.match(request.headers().accept, /application\/x-ndjson/);
+  assert.match((await request.response()).headers()['content-type'], /application\/x-ndjson/);
+  // The same (deterministic) solve streamed again here: Chromium does not keep streamed bodies.
+  const lines = await ndjson('/api/v1/solve', JSON.parse(request.postData()));
   const result = lines.at(-1);
   assert.equal(result.type, 'result');
   assert.equal(lines.filter((l) => l.type === 'iteration').length, result.iterations + 1);
