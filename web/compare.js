@@ -64,7 +64,7 @@ function resultsTable(rows) {
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, rows.map(([name, r]) => el('tr', {},
-      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', {}, r.reason ?? ''),
+      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', { class: 'why' }, r.reason ?? ''),
       el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
       el('td', {}, fmtSeconds(r.seconds))))));
 }
