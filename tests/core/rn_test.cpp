@@ -105,7 +105,9 @@ TEST(RnGroup, NewtonConvergesQuadraticallyOnNonlinearF) {
   ASSERT_GE(res.trace.size(), 3u);
   for (std::size_t k = 1; k + 1 < res.trace.size(); ++k) {
     const double r0 = res.trace[k - 1].residual, r1 = res.trace[k].residual;
-    if (r1 > 1e-10) EXPECT_LE(r1, 10.0 * r0 * r0) << "not quadratic at k = " << k;
+    if (r1 > 1e-10) {
+      EXPECT_LE(r1, 10.0 * r0 * r0) << "not quadratic at k = " << k;
+    }
   }
 }
 
