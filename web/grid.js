@@ -57,7 +57,17 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
     current.tabIndex = 0;
     if (data.has(c)) onShow(data.get(c));
   });
-  grid.addEventListener('click', (e) => { const c = cellOf(e); if (c && data.has(c)) { move(c); onOpen(data.get(c)); } });
+  // A touch screen has no hover: the first tap on a cell shows its numbers, a second tap opens it.
+  // (Focus moves on pointerdown, so whether the cell was already current is read there.)
+  let wasCurrent = false;
+  grid.addEventListener('pointerdown', (e) => { wasCurrent = cellOf(e) === current; });
+  grid.addEventListener('click', (e) => {
+    const c = cellOf(e);
+    if (!c || !data.has(c)) return;
+    const firstTap = e.pointerType === 'touch' && !wasCurrent;
+    move(c);
+    if (!firstTap) onOpen(data.get(c));
+  });
 
   return {
     element: figure,

@@ -16,7 +16,7 @@ if (!binary || !webRoot || !shots) {
 watchdog(110_000);
 mkdirSync(shots, { recursive: true });
 
-let server; let page; let base;
+let server; let browser; let page; let base;
 const consoleErrors = [];
 const external = [];
 
@@ -24,7 +24,7 @@ before(async () => {
   const { chromium } = await loadPlaywright();
   server = await startServer(binary, webRoot);
   base = server.base;
-  const browser = await launchChromium(chromium);
+  browser = await launchChromium(chromium);
   page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
   page.setDefaultTimeout(20_000);
   page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
@@ -187,12 +187,30 @@ test('the work-precision chart has one series per ticked choice', async () => {
   await shot('speed');
 });
 
-test('phone-sized layout and no console errors beyond the deliberate bad request', async () => {
-  await page.setViewportSize({ width: 390, height: 844 });
-  await tab('Solve');
-  await shot('solve-phone');
-  await tab('Stability map');
-  await shot('stability-phone');
+test('on a touch phone a first tap shows a cell, a second tap opens it', async () => {
+  const phone = await browser.newPage({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
+  phone.setDefaultTimeout(20_000);
+  phone.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
+  await phone.goto(base + '/#stability');
+  const panel = phone.locator('#stability');
+  for (const [name, v] of [['n_lo', '2'], ['n_hi', '3'], ['k_lo', '0'], ['k_hi', '1']]) {
+    await panel.locator(`input[name="${name}"]`).fill(v);
+  }
+  await panel.getByRole('button', { name: 'Run' }).tap();
+  await phone.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
+  const cell = panel.locator('.cell[data-method="newton-group"][data-n="3"][data-h="2"]');
+  await cell.tap();
+  assert.equal(await phone.locator('#cell-details [data-detail="n"]').innerText(), '3');
+  assert.equal(await phone.getByRole('tab', { name: 'Stability map' }).getAttribute('aria-selected'), 'true');
+  await phone.screenshot({ path: join(shots, 'stability-phone.png'), fullPage: true });
+  await cell.tap();
+  assert.equal(await phone.getByRole('tab', { name: 'Solve' }).getAttribute('aria-selected'), 'true');
+  await phone.locator('#solve [data-result="iterations"]').waitFor();
+  await phone.screenshot({ path: join(shots, 'solve-phone.png'), fullPage: true });
+  await phone.close();
+});
+
+test('no console errors beyond the deliberate bad request, nothing fetched from outside', () => {
   const unexpected = consoleErrors.filter((m) => !/status of 4(00|22)/.test(m));
   assert.deepEqual(unexpected, []);
   assert.deepEqual(external, []);
