@@ -19,6 +19,13 @@ export const DIFFERENTIALS = [
   ['exact', 'Exact dexp\u207b\u00b9'],
 ];
 
+// Captions of the small stability grids.
+export const METHODS_SHORT = [
+  ['fixed-point', 'Fixed point'],
+  ['newton-group', 'Newton, group (V1)'],
+  ['newton-algebra', 'Newton, algebra (V2)'],
+];
+
 // Column heads of the method x differential tick tables, which must fit a narrow form.
 export const DIFFERENTIALS_SHORT = [
   ['finite-difference', 'FD'],
