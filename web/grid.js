@@ -3,7 +3,7 @@
 // tab stop: arrows move, Enter opens the cell in the Solve panel; hover or focus shows the numbers.
 import { cellColor } from './colormap.js';
 import { el } from './dom.js';
-import { METHODS, METHODS_SHORT, STATUSES, label } from './labels.js';
+import { METHODS, STATUSES, label } from './labels.js';
 
 export function createGrid({ method, ns, hs, onShow, onOpen }) {
   const cells = new Map(); // `${n}|${hIndex}` -> element
@@ -25,7 +25,7 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
       j % 2 === 0 || hs.length < 12 ? String(Math.log2(h)) : '')));
   grid.append(axis);
   // Cells stay at most ~1.75rem wide however few columns a sweep has.
-  const figure = el('figure', { class: 'map', style: `max-width: calc(2.2em + ${hs.length * 1.75}rem)` }, el('figcaption', { title: label(METHODS, method) }, label(METHODS_SHORT, method)), grid,
+  const figure = el('figure', { class: 'map', style: `max-width: calc(2.2em + ${hs.length * 1.75}rem)` }, el('figcaption', { title: label(METHODS, method) }, label(METHODS, method)), grid,
     el('p', { class: 'axis-title' }, 'log\u2082 h \u2192'));
 
   const data = new WeakMap(); // element -> sweep cell

@@ -8,8 +8,8 @@ export const PROBLEMS = [
 
 export const METHODS = [
   ['fixed-point', 'Fixed point (1.2)'],
-  ['newton-group', 'Newton in the group, Version 1 (3.5)'],
-  ['newton-algebra', 'Newton in the algebra, Version 2 (3.20)'],
+  ['newton-group', 'Newton V1, group (3.5)'],
+  ['newton-algebra', 'Newton V2, algebra (3.20)'],
 ];
 
 export const DIFFERENTIALS = [
@@ -17,13 +17,6 @@ export const DIFFERENTIALS = [
   ['dexpinv-0', 'dexp\u207b\u00b9 to order 0'],
   ['dexpinv-1', 'dexp\u207b\u00b9 to order 1'],
   ['exact', 'Exact dexp\u207b\u00b9'],
-];
-
-// Captions of the small stability grids.
-export const METHODS_SHORT = [
-  ['fixed-point', 'Fixed point'],
-  ['newton-group', 'Newton, group (V1)'],
-  ['newton-algebra', 'Newton, algebra (V2)'],
 ];
 
 // Column heads of the method x differential tick tables, which must fit a narrow form.

@@ -27,7 +27,8 @@ export function createSolvePanel(root) {
   const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
   root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames), table));
 
-  const chart = residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
+  const newChart = () => residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
+  let chart = newChart();
   const start = runner(form, live);
   let frameUrl = null;
 
@@ -40,7 +41,7 @@ export function createSolvePanel(root) {
     summary.replaceChildren();
     frames.hidden = true;
     table.hidden = true;
-    chart.set([[]]);
+    chart = newChart(); // fresh axes, not the previous run's range
     live.textContent = 'Solving\u2026';
     await start(async (signal, progress) => {
       if (Number.isFinite(request.max_iterations)) progress.max = request.max_iterations;
