@@ -23,6 +23,7 @@ class Equation {
   using Element = typename G::Element;
   using Vector = typename G::Vector;
   using Spectral = typename G::Spectral;
+  using Operator = typename G::Operator;
   using UserF = std::function<Vector(const Element&)>;
   using UserDf = std::function<Vector(const Element& y, const Vector& u)>;
 
@@ -83,8 +84,14 @@ class Equation {
     return p;
   }
 
-  // Version 1 differential df_y(u), (3.8) / (3.10) / (3.11).
+  // Version 1 differential df_y(u), (3.8) / (3.10) / (3.11); finite-difference: the directional quotient (3.18).
   Vector df(const Point& p, const Vector& u, Differential d) const {
+    if (d == Differential::finite_difference) {
+      const double t = difference_step(p, u);
+      const Point q = at(group_.times_exp(p.y, t * u));
+      if (!q.in_domain) throw son::LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+      return (q.f - p.f) / t;
+    }
     if (!field_) return df_(p.y, u);
     switch (d) {
       case Differential::dexpinv_0: return u - h_ * field_->dg(p.y, u);
@@ -93,13 +100,59 @@ class Equation {
     }
   }
 
-  // Version 2 differential df~_v(u), (3.22) / (3.16) / (3.17); for a user f, df_y o dexp_v (3.24).
+  // Version 2 differential df~_v(u), (3.22) / (3.16) / (3.17); for a user f, df_y o dexp_v (3.24);
+  // finite-difference: the directional quotient (3.19).
   Vector dftilde(const Point& p, const Vector& u, Differential d) const {
+    if (d == Differential::finite_difference) {
+      const double t = difference_step(p, u);
+      return (at_algebra(p.v + t * u).f - p.f) / t;
+    }
     if (!field_) return df_(p.y, group_.dexp(p.v_form, u));
     switch (d) {
       case Differential::dexpinv_0: return u - h_ * field_->dg(p.y, u);
       case Differential::dexpinv_1: return u - h_ * field_->dg(p.y, u - 0.5 * group_.bracket(p.v, u));
       default: return u - h_ * field_->dg(p.y, group_.dexp(p.v_form, u));
+    }
+  }
+
+  // The q x q matrix of df_y on the basis (throws son::LogDomainError if a difference quotient crosses pi). Exact and truncated differentials are assembled from the
+  // closed/spectral matrices of dexpinv and ad plus dg's matrix; differences perturb y by exp(t b_i), a plane
+  // rotation on SO(N).
+  Operator df_matrix(const Point& p, Differential d) const {
+    if (d == Differential::finite_difference) {
+      Operator m = group_.operator_matrix();
+      const double t = difference_step(p, group_.unit(0));
+      for (int i = 0; i < group_.dim(); ++i) {
+        const Point q = at(group_.times_exp_unit(p.y, i, t));
+        if (!q.in_domain) throw son::LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+        m.col(i) = (q.f - p.f) / t;
+      }
+      return m;
+    }
+    if (!field_) return columns([&](const Vector& u) { return df_(p.y, u); });
+    const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
+    switch (d) {
+      case Differential::dexpinv_0: return group_.identity_operator() - hdg;
+      case Differential::dexpinv_1: return group_.identity_operator() + 0.5 * group_.ad_matrix(p.v) - hdg;
+      default: return group_.dexpinv_matrix(p.v_form) - hdg;
+    }
+  }
+
+  // The q x q matrix of df~_v on the basis.
+  Operator dftilde_matrix(const Point& p, Differential d) const {
+    if (d == Differential::finite_difference) {
+      Operator m = group_.operator_matrix();
+      const double t = difference_step(p, group_.unit(0));
+      for (int i = 0; i < group_.dim(); ++i) m.col(i) = (at_algebra(p.v + t * group_.unit(i)).f - p.f) / t;
+      return m;
+    }
+    if (!field_) return columns([&](const Vector& u) { return df_(p.y, group_.dexp(p.v_form, u)); });
+    const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
+    switch (d) {
+      case Differential::dexpinv_0: return group_.identity_operator() - hdg;
+      case Differential::dexpinv_1:
+        return group_.identity_operator() - hdg * (group_.identity_operator() - 0.5 * group_.ad_matrix(p.v));
+      default: return group_.identity_operator() - hdg * group_.dexp_matrix(p.v_form);
     }
   }
 
@@ -122,6 +175,20 @@ class Equation {
   Equation(G group, Element z, double h, const VectorField<G>* field, UserF f, UserDf df)
       : group_(group), z_(std::move(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field), f_(std::move(f)),
         df_(std::move(df)) {}
+
+  // Forward-difference step t = sqrt(eps) scaled to the point and the direction, as the paper suggests
+  // for (3.12)/(3.18): |t u| ~ sqrt(eps) max(1, |v|).
+  static double difference_step(const Point& p, const Vector& u) {
+    const double scale = std::max(1.0, p.v.size() > 0 ? p.v.norm() : 0.0);
+    return std::sqrt(std::numeric_limits<double>::epsilon()) * scale / std::max(u.norm(), 1e-300);
+  }
+
+  template <class Apply>
+  Operator columns(Apply apply) const {
+    Operator m = group_.operator_matrix();
+    for (int i = 0; i < group_.dim(); ++i) m.col(i) = apply(group_.unit(i));
+    return m;
+  }
 
   static double principal_angle(double theta) {
     const double two_pi = 2.0 * so3::kPi;

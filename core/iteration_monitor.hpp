@@ -23,6 +23,7 @@ struct SolverOptions {
   int max_iterations = 100;
   bool include_iterates = false;
   Differential differential = Differential::exact;
+  LinearSolver linear_solver = LinearSolver::auto_select;
 };
 
 class IterationMonitor {

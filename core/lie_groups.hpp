@@ -25,6 +25,7 @@ struct SO3Group {
   Vector zero() const { return Vector::Zero(); }
   Vector unit(int i) const { return Vector::Unit(i); }
   Operator operator_matrix() const { return Operator::Zero(); }
+  Operator identity_operator() const { return Operator::Identity(); }
   Element identity() const { return Element::Identity(); }
   Element compose(const Element& a, const Element& b) const { return a * b; }
   Element inverse(const Element& a) const { return a.transpose(); }  // O(N): every iterate stays in z SO(N)
@@ -42,6 +43,10 @@ struct SO3Group {
   Element exp(const Vector& v) const { return so3::exp(v); }
   Element times_exp(const Element& y, const Vector& v) const { return y + y * so3::expm1(v); }
   Element times_exp_form(const Element& y, const Spectral& s) const { return times_exp(y, s); }
+  Element times_exp_unit(const Element& y, int i, double t) const { return times_exp(y, t * unit(i)); }
+  Operator dexp_matrix(const Spectral& s) const { return so3::dexp_matrix(s); }
+  Operator dexpinv_matrix(const Spectral& s) const { return so3::dexpinv_matrix(s); }
+  Operator ad_matrix(const Vector& v) const { return so3::hat(v); }
   bool log_defined(const Spectral& s) const { return s.norm() <= so3::kPi - son::kLogDomainMargin; }
 };
 
@@ -57,6 +62,7 @@ struct SONGroup {
   Vector zero() const { return Vector::Zero(dim()); }
   Vector unit(int i) const { return Vector::Unit(dim(), i); }
   Operator operator_matrix() const { return Operator::Zero(dim(), dim()); }
+  Operator identity_operator() const { return Operator::Identity(dim(), dim()); }
   Element identity() const { return Element::Identity(n_, n_); }
   Element compose(const Element& a, const Element& b) const { return a * b; }
   Element inverse(const Element& a) const { return a.transpose(); }
@@ -74,6 +80,14 @@ struct SONGroup {
   Element exp(const Vector& v) const { return son::exp(hat(v)); }
   Element times_exp(const Element& y, const Vector& v) const { return exp_form(v).times_rotation(y); }
   Element times_exp_form(const Element& y, const Spectral& s) const { return s.times_rotation(y); }
+  Element times_exp_unit(const Element& y, int i, double t) const {
+    int a = 0;  // basis element i is E_ab - E_ba in row-major order of the pairs a < b
+    while (i >= n_ - 1 - a) i -= n_ - 1 - a++;
+    return son::times_givens(y, a, a + 1 + i, t);
+  }
+  Operator dexp_matrix(const Spectral& s) const { return son::dexp_matrix(s); }
+  Operator dexpinv_matrix(const Spectral& s) const { return son::dexpinv_matrix(s); }
+  Operator ad_matrix(const Vector& v) const { return son::ad_matrix(hat(v)); }
   bool log_defined(const Spectral& s) const { return s.max_angle() <= so3::kPi - son::kLogDomainMargin; }
 
  private:
@@ -93,6 +107,7 @@ struct RnGroup {
   Vector zero() const { return Vector::Zero(n_); }
   Vector unit(int i) const { return Vector::Unit(n_, i); }
   Operator operator_matrix() const { return Operator::Zero(n_, n_); }
+  Operator identity_operator() const { return Operator::Identity(n_, n_); }
   Element identity() const { return Element::Zero(n_); }
   Element compose(const Element& a, const Element& b) const { return a + b; }
   Element inverse(const Element& a) const { return -a; }
@@ -110,6 +125,10 @@ struct RnGroup {
   Element exp(const Vector& v) const { return v; }
   Element times_exp(const Element& y, const Vector& v) const { return y + v; }
   Element times_exp_form(const Element& y, const Spectral& s) const { return y + s; }
+  Element times_exp_unit(const Element& y, int i, double t) const { return y + t * unit(i); }
+  Operator dexp_matrix(const Spectral&) const { return Operator::Identity(n_, n_); }
+  Operator dexpinv_matrix(const Spectral&) const { return Operator::Identity(n_, n_); }
+  Operator ad_matrix(const Vector&) const { return Operator::Zero(n_, n_); }
   bool log_defined(const Spectral&) const { return true; }
 
  private:

@@ -3,23 +3,32 @@
 //   fixed_point     (1.2)  y_{n+1} = z exp(h g(y_n))
 //   newton_group    (3.5)  df_{y_n}(u_n) = -f(y_n),   y_{n+1} = y_n exp(u_n)         (Version 1)
 //   newton_algebra  (3.20) df~_{v_n}(u_n) = -f~(v_n), v_{n+1} = v_n + u_n, v_0 = 0   (Version 2)
-// The Newton system is assembled on the coordinate basis and solved by LU with partial pivoting; its
-// reciprocal condition number is checked first (singular_differential).
+// The Newton system is assembled on the coordinate basis and solved by LU with partial pivoting (its
+// reciprocal condition number checked first: singular_differential), or for large N applied matrix-free
+// inside GMRES.
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "equation.hpp"
+#include "gmres.hpp"
 #include "iteration_monitor.hpp"
 
 namespace lienewton {
 
+// Above this N (q = N(N-1)/2 = 780 unknowns) the Newton system is solved matrix-free by GMRES: assembling
+// and factoring it costs O(N^6) time and O(N^4) memory, one application of the spectral dexpinv O(N^3).
+inline constexpr int kKrylovThreshold = 40;
+inline constexpr int kMaxKrylovIterations = 300;
+
 namespace detail {
 
-// Forward-difference step t = sqrt(eps) scaled to the point, as the paper suggests for (3.12)/(3.18).
-inline double difference_step(double point_norm) {
-  return std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, point_norm);
+inline std::string angle_detail(double angle, int n) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", n, angle, so3::kPi - angle);
+  return buf;
 }
 
 template <class G>
@@ -30,26 +39,47 @@ double scale_of(const typename Equation<G>::Point& p) {
   return s;
 }
 
-// Solves D u = -f; false when D is singular or too ill-conditioned to trust.
-template <class Operator, class Vector>
-bool newton_step(const Operator& d, const Vector& f, Vector& u) {
-  if (!d.allFinite()) return false;
-  const Eigen::PartialPivLU<Operator> lu(d);
-  if (!(lu.rcond() >= kSingularRcond)) return false;
-  u = -lu.solve(f);
-  return true;
+template <class G>
+bool use_krylov(const G& group, LinearSolver choice) {
+  if (choice == LinearSolver::auto_select) return group.n() > kKrylovThreshold;
+  return choice == LinearSolver::gmres;
 }
 
-inline std::string angle_detail(double angle, int n) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", n, angle, so3::kPi - angle);
-  return buf;
+enum class StepOutcome { ok, singular, non_finite };
+
+// Solves D u = -f for the Newton step, D given by `assemble` (dense LU with partial pivoting, refused when
+// its reciprocal condition number is below kSingularRcond) or, matrix-free, by `apply` inside GMRES with the
+// forcing term eta = min(0.1, ||f||): ||D u + f|| <= eta ||f|| keeps Newton's convergence quadratic
+// (Eisenstat & Walker 1996; Dembo, Eisenstat & Steihaug 1982).
+template <class G, class Assemble, class Apply>
+StepOutcome newton_step(bool krylov, const Assemble& assemble, const Apply& apply,
+                        const typename G::Vector& f, typename G::Vector& u) {
+  if (krylov) {
+    Eigen::VectorXd x;
+    const double eta = std::clamp(f.norm(), 1e-12, 0.1);
+    const GmresResult r = gmres([&](const Eigen::VectorXd& w) { return Eigen::VectorXd(apply(w)); },
+                                Eigen::VectorXd(-f), x, eta, kMaxKrylovIterations);
+    if (!x.allFinite()) return StepOutcome::non_finite;
+    if (r.iterations == 0 || r.relative_residual >= 1.0) return StepOutcome::singular;
+    u = x;
+    return StepOutcome::ok;
+  }
+  const typename G::Operator d = assemble();
+  if (!d.allFinite()) return StepOutcome::non_finite;
+  const Eigen::PartialPivLU<typename G::Operator> lu(d);
+  if (!(lu.rcond() >= kSingularRcond)) return StepOutcome::singular;
+  u = -lu.solve(f);
+  return StepOutcome::ok;
+}
+
+inline Status status_of(StepOutcome o) {
+  return o == StepOutcome::singular ? Status::singular_differential : Status::non_finite;
 }
 
 template <class Element>
-SolveResult with_final_iterate(SolveResult res, const Element& y) {
+SolveResult with_final_iterate(SolveResult res, const Element& y, bool krylov) {
   res.y = y;
-  res.linear_solver = "lu";
+  res.linear_solver = krylov ? "gmres" : "lu";
   return res;
 }
 
@@ -68,39 +98,30 @@ template <class G>
 SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   using Point = typename Equation<G>::Point;
   const G& group = eq.group();
+  const bool krylov = detail::use_krylov(group, opt.linear_solver);
   IterationMonitor monitor(opt, cb, group.dim());
+  auto finish = [&](Status s, const typename G::Element& y, std::string detail = {}) {
+    return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, s, y), std::move(detail)), y, krylov);
+  };
   typename G::Element y = eq.z();
-  typename G::Operator d = group.operator_matrix();
   typename G::Vector u = group.zero();
   double step = 0.0;
   for (;;) {
     const Point p = eq.at(y);
-    if (!p.in_domain) {
-      const Status s = detail::classify_failure(eq, Status::left_log_domain, y);
-      return detail::with_final_iterate(monitor.finish(s, detail::angle_detail(p.angle, monitor.iteration())), y);
+    if (!p.in_domain) return finish(Status::left_log_domain, y, detail::angle_detail(p.angle, monitor.iteration()));
+    if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) return finish(*stop, y);
+    detail::StepOutcome outcome;
+    try {
+      outcome = detail::newton_step<G>(
+          krylov, [&] { return eq.df_matrix(p, opt.differential); },
+          [&](const typename G::Vector& w) { return eq.df(p, w, opt.differential); }, p.f, u);
+    } catch (const son::LogDomainError& e) {
+      return finish(Status::left_log_domain, y, e.what());
     }
-    if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) {
-      return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, *stop, y)), y);
-    }
-    // Assemble df_y on the basis: exact/truncated columns (3.8)/(3.10)/(3.11), or differences (3.18).
-    if (opt.differential == Differential::finite_difference) {
-      const double t = detail::difference_step(p.v.size() > 0 ? p.v.norm() : 0.0);
-      for (int i = 0; i < group.dim(); ++i) {
-        const Point q = eq.at(group.times_exp(y, t * group.unit(i)));
-        if (!q.in_domain)
-          return detail::with_final_iterate(monitor.finish(Status::left_log_domain, "in a difference quotient"), y);
-        d.col(i) = (q.f - p.f) / t;
-      }
-    } else {
-      for (int i = 0; i < group.dim(); ++i) d.col(i) = eq.df(p, group.unit(i), opt.differential);
-    }
-    if (!detail::newton_step(d, p.f, u)) {
-      const Status s = d.allFinite() ? Status::singular_differential : Status::non_finite;
-      return detail::with_final_iterate(monitor.finish(s), y);
-    }
-    const typename G::Element next = group.times_exp(y, u);
+    if (outcome != detail::StepOutcome::ok) return finish(detail::status_of(outcome), y);
+    const typename G::Element next = group.times_exp(y, u);  // (3.5): y_{n+1} = y_n exp(u_n)
     step = u.norm();
-    if (!next.allFinite()) return detail::with_final_iterate(monitor.finish(Status::non_finite), y);
+    if (!next.allFinite()) return finish(Status::non_finite, y);
     y = next;
     monitor.next();
   }
@@ -110,9 +131,12 @@ template <class G>
 SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   using Point = typename Equation<G>::Point;
   const G& group = eq.group();
+  const bool krylov = detail::use_krylov(group, opt.linear_solver);
   IterationMonitor monitor(opt, cb, group.dim());
+  auto finish = [&](Status s, const typename G::Element& y) {
+    return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, s, y)), y, krylov);
+  };
   typename G::Vector v = group.zero();
-  typename G::Operator d = group.operator_matrix();
   typename G::Vector u = group.zero();
   double step = 0.0;
   for (;;) {
@@ -121,22 +145,15 @@ SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, cons
       Status s = *stop;
       // f~(v) = 0 solves y = z exp(v), v = h g(y); log(z^-1 y) = v only while v's angles stay below pi.
       if (s == Status::converged && eq.is_implicit_euler() && p.algebra_angle > so3::kPi) s = Status::off_branch;
-      return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, s, p.y)), p.y);
+      return finish(s, p.y);
     }
-    if (opt.differential == Differential::finite_difference) {  // (3.19)
-      const double t = detail::difference_step(v.norm());
-      for (int i = 0; i < group.dim(); ++i) d.col(i) = (eq.at_algebra(v + t * group.unit(i)).f - p.f) / t;
-    } else {
-      for (int i = 0; i < group.dim(); ++i) d.col(i) = eq.dftilde(p, group.unit(i), opt.differential);
-    }
-    if (!detail::newton_step(d, p.f, u)) {
-      const Status s = d.allFinite() ? Status::singular_differential : Status::non_finite;
-      return detail::with_final_iterate(monitor.finish(s), p.y);
-    }
+    const detail::StepOutcome outcome = detail::newton_step<G>(
+        krylov, [&] { return eq.dftilde_matrix(p, opt.differential); },
+        [&](const typename G::Vector& w) { return eq.dftilde(p, w, opt.differential); }, p.f, u);
+    if (outcome != detail::StepOutcome::ok) return finish(detail::status_of(outcome), p.y);
     step = u.norm();
-    if (!u.allFinite()) return detail::with_final_iterate(monitor.finish(Status::non_finite), p.y);
-    if (v.norm() + step > kDivergenceBound) return detail::with_final_iterate(monitor.finish(Status::diverged), p.y);
-    v += u;
+    if (v.norm() + step > kDivergenceBound) return finish(Status::diverged, p.y);
+    v += u;  // (3.20): v_{n+1} = v_n + u_n
     monitor.next();
   }
 }
@@ -146,20 +163,17 @@ SolveResult fixed_point(const Equation<G>& eq, const SolverOptions& opt, const T
   using Point = typename Equation<G>::Point;
   const G& group = eq.group();
   IterationMonitor monitor(opt, cb, group.dim());
+  auto finish = [&](Status s, const typename G::Element& y, std::string detail = {}) {
+    return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, s, y), std::move(detail)), y, false);
+  };
   typename G::Element y = eq.z();
   double step = 0.0;
   for (;;) {
     const Point p = eq.at(y);
-    if (!p.in_domain) {
-      const Status s = detail::classify_failure(eq, Status::left_log_domain, y);
-      return detail::with_final_iterate(monitor.finish(s, detail::angle_detail(p.angle, monitor.iteration())), y);
-    }
-    const double scale = detail::scale_of<G>(p);
-    if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, scale)) {
-      return detail::with_final_iterate(monitor.finish(detail::classify_failure(eq, *stop, y)), y);
-    }
-    const typename G::Element next = eq.fixed_point_map(p);
-    if (!next.allFinite()) return detail::with_final_iterate(monitor.finish(Status::non_finite), y);
+    if (!p.in_domain) return finish(Status::left_log_domain, y, detail::angle_detail(p.angle, monitor.iteration()));
+    if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) return finish(*stop, y);
+    const typename G::Element next = eq.fixed_point_map(p);  // (1.2)
+    if (!next.allFinite()) return finish(Status::non_finite, y);
     step = (next - y).norm() / std::sqrt(2.0);
     y = next;
     monitor.next();

@@ -13,15 +13,20 @@ enum class Method { fixed_point, newton_group, newton_algebra };
 enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
 // implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6)
 enum class Integrator { implicit_euler, dirk_cg2 };
+// How the Newton system is solved: auto picks lu below kKrylovThreshold (newton.hpp) and gmres above;
+// lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
+enum class LinearSolver { auto_select, lu, gmres };
 
 std::string_view to_string(ProblemKind);
 std::string_view to_string(Method);
 std::string_view to_string(Differential);
 std::string_view to_string(Integrator);
+std::string_view to_string(LinearSolver);
 std::optional<ProblemKind> problem_from_string(std::string_view);
 std::optional<Method> method_from_string(std::string_view);
 std::optional<Differential> differential_from_string(std::string_view);
 std::optional<Integrator> integrator_from_string(std::string_view);
+std::optional<LinearSolver> linear_solver_from_string(std::string_view);
 
 inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
                                                ProblemKind::rigid_body};

@@ -4,6 +4,7 @@
 // Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates.
 #include <Eigen/Dense>
 #include <memory>
+#include <type_traits>
 
 #include "lie_groups.hpp"
 #include "solve.hpp"
@@ -15,10 +16,20 @@ class VectorField {
  public:
   using Element = typename G::Element;
   using Vector = typename G::Vector;
+  using Operator = typename G::Operator;
   virtual ~VectorField() = default;
   virtual Vector g(const Element& y) const = 0;
   virtual Vector dg(const Element& y, const Vector& u) const = 0;
+  // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
+  virtual Operator dg_matrix(const G& group, const Element& y) const {
+    Operator m = group.operator_matrix();
+    for (int i = 0; i < group.dim(); ++i) m.col(i) = dg(y, group.unit(i));
+    return m;
+  }
 };
+
+// Index of the basis element E_ij - E_ji (i < j) in the paper's row-major order.
+inline int pair_index(int n, int i, int j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); }
 
 // g(y) = diag(diag(y,1),1) - diag(diag(y,1),-1); linear in y, so dg_y(U) = g(yU).
 struct PaperLinear {
@@ -34,6 +45,18 @@ struct PaperLinear {
   template <class M>
   M dg(const M& y, const M& u) const {
     return g(M(y * u));
+  }
+  // On the basis of so(N): y b_ab = y_:a e_b^T - y_:b e_a^T has superdiagonal entries only at (b-1, b)
+  // and (a-1, a), so each column has at most two entries.
+  Eigen::MatrixXd dg_matrix(const Eigen::MatrixXd& y) const {
+    const int n = static_cast<int>(y.rows());
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * (n - 1) / 2, n * (n - 1) / 2);
+    for (int a = 0, col = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b, ++col) {
+        m(pair_index(n, b - 1, b), col) += y(b - 1, a);
+        if (a >= 1) m(pair_index(n, a - 1, a), col) -= y(a - 1, b);
+      }
+    return m;
   }
 };
 
@@ -53,6 +76,27 @@ struct PaperSine {
     const M dp = 2.0 * dy - 5.0 * (dy * y + y * dy);
     const M du = ds * p + s * dp;
     return du - du.transpose();
+  }
+  // On the basis of so(N), dy = y b_ab = y_:a e_b^T - y_:b e_a^T has rank 2, so with s y and s y y formed once
+  // every column of the product rule is a sum of outer products: O(N^2) per column instead of O(N^3).
+  Eigen::MatrixXd dg_matrix(const Eigen::MatrixXd& y) const {
+    using Eigen::MatrixXd;
+    const int n = static_cast<int>(y.rows());
+    const MatrixXd s = y.array().sin().matrix(), c = y.array().cos().matrix();
+    const MatrixXd p = 2.0 * y - 5.0 * y * y;
+    const MatrixXd sy = s * y, syy = sy * y;
+    MatrixXd m(n * (n - 1) / 2, n * (n - 1) / 2), du(n, n);
+    for (int a = 0, col = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b, ++col) {
+        // du = ds p + s dp with ds = cos.(y) .* dy and s dp = 2 s dy - 5 (s dy y + s y dy)
+        du.noalias() = c.col(b).cwiseProduct(y.col(a)) * p.row(b) - c.col(a).cwiseProduct(y.col(b)) * p.row(a);
+        du.noalias() -= 5.0 * (sy.col(a) * y.row(b) - sy.col(b) * y.row(a));
+        du.col(b) += 2.0 * sy.col(a) - 5.0 * syy.col(a);
+        du.col(a) -= 2.0 * sy.col(b) - 5.0 * syy.col(b);
+        for (int i = 0, k = 0; i < n; ++i)
+          for (int j = i + 1; j < n; ++j, ++k) m(k, col) = du(i, j) - du(j, i);
+      }
+    return m;
   }
 };
 
@@ -87,6 +131,13 @@ class VectorFieldOf final : public VectorField<G> {
   Vector g(const Element& y) const override { return group_.vee(problem_.g(y)); }
   Vector dg(const Element& y, const Vector& u) const override {
     return group_.vee(problem_.dg(y, Element(group_.hat(u))));
+  }
+  typename G::Operator dg_matrix(const G& group, const Element& y) const override {
+    if constexpr (std::is_same_v<G, SONGroup> && requires { problem_.dg_matrix(y); }) {
+      return problem_.dg_matrix(y);
+    } else {
+      return VectorField<G>::dg_matrix(group, y);
+    }
   }
   const Problem& problem() const { return problem_; }
 

@@ -30,6 +30,7 @@ struct SolveRequest {
   std::optional<Eigen::MatrixXd> z;  // start point; when absent, start_point(n, seed)
   bool include_iterates = false;
   RigidBodyParams rigid_body;
+  LinearSolver linear_solver = LinearSolver::auto_select;
 };
 
 // One record per iterate y_n, n = 0, 1, ... (y_0 = z).

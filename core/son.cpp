@@ -37,33 +37,87 @@ Eigen::Matrix2d rotation2(double theta) {
 // X -> A_k X - X A_l with A = theta J; J behaves like i, so
 //   2x2: the part of X commuting with J sees w = theta_k - theta_l, the anticommuting part w = theta_k + theta_l;
 //   2x1: w = theta_k; 1x2: w = theta_l (acting on the transposed row); 1x1: w = 0.
-template <class F>
-Mat apply_ad_function(const SpectralForm& s, const Mat& u, F f) {
-  Mat x = s.q.transpose() * u * s.q;
-  const Eigen::Matrix2d j = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
-  auto left = [&](double w, const auto& block) {
-    const std::complex<double> v = f(w);
-    return (v.real() * block + v.imag() * (j * block)).eval();
-  };
-  const std::complex<double> at_zero = f(0.0);
-  for (const auto& bk : s.blocks) {
-    for (const auto& bl : s.blocks) {
-      auto blk = x.block(bk.start, bl.start, bk.size, bl.size);
-      if (bk.size == 2 && bl.size == 2) {
-        const Eigen::Matrix2d m = blk;
-        const Eigen::Matrix2d jmj = j * m * j;
-        blk = left(bk.theta - bl.theta, 0.5 * (m - jmj)) + left(bk.theta + bl.theta, 0.5 * (m + jmj));
-      } else if (bk.size == 2) {
-        blk = left(bk.theta, Eigen::Vector2d(blk));
-      } else if (bl.size == 2) {
-        blk = left(bl.theta, Eigen::Vector2d(blk.transpose())).transpose();
-      } else {
-        blk *= at_zero.real();
+// The values of F are tabulated once per block pair, then applied to as many X as needed.
+class AdFunction {
+ public:
+  template <class F>
+  AdFunction(const SpectralForm& s, F f) : s_(s), nb_(s.blocks.size()), minus_(nb_ * nb_), plus_(nb_ * nb_) {
+    for (std::size_t k = 0; k < nb_; ++k)
+      for (std::size_t l = 0; l < nb_; ++l) {
+        const auto& bk = s.blocks[k];
+        const auto& bl = s.blocks[l];
+        const double w_minus = bk.size == 2 ? (bl.size == 2 ? bk.theta - bl.theta : bk.theta) : bl.theta;
+        minus_[k * nb_ + l] = f(w_minus);
+        plus_[k * nb_ + l] = f(bk.theta + bl.theta);
+      }
+  }
+
+  // X (in Q's basis) -> F(ad) X, in place.
+  void apply_in_q_basis(Mat& x) const {
+    const Eigen::Matrix2d j = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
+    auto left = [&](std::complex<double> v, const auto& block) {
+      return (v.real() * block + v.imag() * (j * block)).eval();
+    };
+    for (std::size_t k = 0; k < nb_; ++k) {
+      const auto& bk = s_.blocks[k];
+      for (std::size_t l = 0; l < nb_; ++l) {
+        const auto& bl = s_.blocks[l];
+        auto blk = x.block(bk.start, bl.start, bk.size, bl.size);
+        const std::complex<double> fm = minus_[k * nb_ + l];
+        if (bk.size == 2 && bl.size == 2) {
+          const Eigen::Matrix2d m = blk;
+          const Eigen::Matrix2d jmj = j * m * j;
+          blk = left(fm, 0.5 * (m - jmj)) + left(plus_[k * nb_ + l], 0.5 * (m + jmj));
+        } else if (bk.size == 2) {
+          blk = left(fm, Eigen::Vector2d(blk));
+        } else if (bl.size == 2) {
+          blk = left(fm, Eigen::Vector2d(blk.transpose())).transpose();
+        } else {
+          blk *= fm.real();
+        }
       }
     }
   }
-  Mat r = s.q * x * s.q.transpose();
-  return 0.5 * (r - r.transpose());
+
+  Mat apply(const Mat& u) const {
+    Mat x = s_.q.transpose() * u * s_.q;
+    apply_in_q_basis(x);
+    Mat r = s_.q * x * s_.q.transpose();
+    return 0.5 * (r - r.transpose());
+  }
+
+  // The q x q matrix of F(ad_v) on the paper's basis. Q^T b Q for b = E_ab - E_ba is the rank-2
+  // q_a q_b^T - q_b q_a^T (q_a = row a of Q), so each column costs one N^3 product instead of three.
+  Mat matrix() const {
+    const int n = static_cast<int>(s_.q.rows());
+    Mat out(algebra_dim(n), algebra_dim(n));
+    int col = 0;
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b, ++col) {
+        Mat x = s_.q.row(a).transpose() * s_.q.row(b) - s_.q.row(b).transpose() * s_.q.row(a);
+        apply_in_q_basis(x);
+        out.col(col) = vee(s_.q * x * s_.q.transpose());
+      }
+    return out;
+  }
+
+ private:
+  const SpectralForm& s_;
+  std::size_t nb_;
+  std::vector<std::complex<double>> minus_, plus_;
+};
+
+// phi(x) = (1 - e^-x)/x at x = i w: sin(w)/w - i (1 - cos w)/w   (dexp, (2.10))
+std::complex<double> dexp_function(double w) {
+  if (w == 0.0) return {1.0, 0.0};
+  const double s = std::sin(0.5 * w);
+  return {std::sin(w) / w, -2.0 * s * s / w};
+}
+
+// psi(x) = x / (1 - e^-x) at x = i w: (w/2) cot(w/2) + i w/2   (dexpinv, (3.9))
+std::complex<double> dexpinv_function(double w) {
+  if (w == 0.0) return {1.0, 0.0};
+  return {0.5 * w / std::tan(0.5 * w), 0.5 * w};
 }
 
 }  // namespace
@@ -167,21 +221,36 @@ double max_angle(const Mat& r) {
   return m;
 }
 
-Mat dexp(const SpectralForm& v, const Mat& u) {
-  // phi(x) = (1 - e^-x)/x at x = i w: sin(w)/w - i (1 - cos w)/w
-  return apply_ad_function(v, u, [](double w) {
-    if (w == 0.0) return std::complex<double>(1.0, 0.0);
-    const double s = std::sin(0.5 * w);
-    return std::complex<double>(std::sin(w) / w, -2.0 * s * s / w);
-  });
+Mat dexp(const SpectralForm& v, const Mat& u) { return AdFunction(v, dexp_function).apply(u); }
+Mat dexpinv(const SpectralForm& v, const Mat& u) { return AdFunction(v, dexpinv_function).apply(u); }
+Mat dexp_matrix(const SpectralForm& v) { return AdFunction(v, dexp_function).matrix(); }
+Mat dexpinv_matrix(const SpectralForm& v) { return AdFunction(v, dexpinv_function).matrix(); }
+
+Mat ad_matrix(const Mat& v) {
+  // [v, E_ab - E_ba] = v_:a e_b^T - v_:b e_a^T - e_a v_b: + e_b v_a:, assembled without N^3 products.
+  const int n = static_cast<int>(v.rows());
+  Mat out(algebra_dim(n), algebra_dim(n));
+  Mat m = Mat::Zero(n, n);
+  int col = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b, ++col) {
+      m.setZero();
+      m.col(b) += v.col(a);
+      m.col(a) -= v.col(b);
+      m.row(a) -= v.row(b);
+      m.row(b) += v.row(a);
+      out.col(col) = vee(m);
+    }
+  return out;
 }
 
-Mat dexpinv(const SpectralForm& v, const Mat& u) {
-  // psi(x) = x / (1 - e^-x) at x = i w: (w/2) cot(w/2) + i w/2
-  return apply_ad_function(v, u, [](double w) {
-    if (w == 0.0) return std::complex<double>(1.0, 0.0);
-    return std::complex<double>(0.5 * w / std::tan(0.5 * w), 0.5 * w);
-  });
+Mat times_givens(const Mat& y, int a, int b, double t) {
+  // y exp(t (E_ab - E_ba)): exp of a basis element is a plane rotation; only columns a and b change.
+  Mat out = y;
+  const double s = std::sin(t), cos_minus_1 = -2.0 * std::sin(0.5 * t) * std::sin(0.5 * t);
+  out.col(a) += cos_minus_1 * y.col(a) - s * y.col(b);
+  out.col(b) += s * y.col(a) + cos_minus_1 * y.col(b);
+  return out;
 }
 
 Mat dexpinv_series(const Mat& v, const Mat& u, int p_max) {

@@ -67,6 +67,13 @@ inline Mat bracket(const Mat& a, const Mat& b) { return a * b - b * a; }
 //   dexpinv_v(U) = U + 1/2 [v,U] + sum_p B_2p/(2p)! ad_v^2p (U)       (3.9)
 Mat dexp(const SpectralForm& v, const Mat& u);
 Mat dexpinv(const SpectralForm& v, const Mat& u);
+// Their q x q matrices on the paper's basis, in O(N^5) (one N^3 product per column).
+Mat dexp_matrix(const SpectralForm& v);
+Mat dexpinv_matrix(const SpectralForm& v);
+// The q x q matrix of ad_v = [v, .], in O(N^4).
+Mat ad_matrix(const Mat& v);
+// y exp(t b) for the basis element b = E_ab - E_ba (a < b): a plane rotation of columns a and b, O(N).
+Mat times_givens(const Mat& y, int a, int b, double t);
 // (3.9) truncated after ad_v^(2 p_max): for comparison with the exact form.
 Mat dexpinv_series(const Mat& v, const Mat& u, int p_max);
 
