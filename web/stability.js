@@ -94,6 +94,7 @@ export function createStabilityPanel(root, { openSolve }) {
       last = { request, cells: [], grids, seconds: 0 };
       const total = request.methods.length * request.n.length * request.h.length;
       progress.max = total;
+      // A cancelled or timed-out sweep keeps the cells it finished, coloured on their own range.
       const result = await stream('/api/v1/sweep', request, { signal, onRecord(rec) {
         if (rec.type !== 'cell') return;
         const { type, ...cell } = rec;
@@ -103,7 +104,10 @@ export function createStabilityPanel(root, { openSolve }) {
         grids.find((g) => g.set(cell, metric, metricScale(last.cells, metric)));
         progress.value = last.cells.length;
         live.textContent = `${last.cells.length} of ${total} cells solved\u2026`;
-      } });
+      } }).catch((err) => {
+        if (last.cells.length) paint();
+        throw err;
+      });
       if (Array.isArray(result.cells)) last.cells = result.cells;
       last.cells.sort(cellOrder);
       last.seconds = result.seconds ?? 0;
