@@ -76,12 +76,7 @@ std::string log2_label(double h) {
 }
 
 std::string metric_label(HeatmapMetric metric) {
-  switch (metric) {
-    case HeatmapMetric::iterations: return "iterations";
-    case HeatmapMetric::rate: return "rate";
-    case HeatmapMetric::residual: return "log10 residual";
-  }
-  return "";
+  return metric == HeatmapMetric::residual ? "log10 residual" : std::string(to_string(metric));
 }
 
 HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int width, int height) {

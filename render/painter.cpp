@@ -56,6 +56,15 @@ void main() {
 }
 )";
 
+// Throws with GL's info log when a compile or link step failed.
+template <class GetLog>
+void require_ok(GLint ok, const char* what, GetLog get_log) {
+  if (ok) return;
+  char log[1024] = {};
+  get_log(log, static_cast<GLsizei>(sizeof log));
+  throw RenderUnavailable(std::string(what) + ": " + log);
+}
+
 }  // namespace
 
 Painter::Painter(const GlContext& context) : gl_(load_gl_functions(context)) {
@@ -65,12 +74,8 @@ Painter::Painter(const GlContext& context) : gl_(load_gl_functions(context)) {
     gl_.CompileShader(shader);
     GLint ok = 0;
     gl_.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[1024] = {};
-      gl_.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-      gl_.DeleteShader(shader);
-      throw RenderUnavailable(std::string("shader does not compile: ") + log);
-    }
+    require_ok(ok, "shader does not compile",
+               [&](char* log, GLsizei size) { gl_.GetShaderInfoLog(shader, size, nullptr, log); });
     return shader;
   };
   const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexShader);
@@ -83,11 +88,8 @@ Painter::Painter(const GlContext& context) : gl_(load_gl_functions(context)) {
   gl_.DeleteShader(fragment);
   GLint linked = 0;
   gl_.GetProgramiv(program_, GL_LINK_STATUS, &linked);
-  if (!linked) {
-    char log[1024] = {};
-    gl_.GetProgramInfoLog(program_, sizeof log, nullptr, log);
-    throw RenderUnavailable(std::string("shader program does not link: ") + log);
-  }
+  require_ok(linked, "shader program does not link",
+             [&](char* log, GLsizei size) { gl_.GetProgramInfoLog(program_, size, nullptr, log); });
   gl_.UseProgram(program_);
   size_uniform_ = gl_.GetUniformLocation(program_, "u_size");
   gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_atlas"), 0);

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include "png_decode.hpp"
+#include "shared_renderer.hpp"
 #include "render/camera.hpp"
 #include "render/frames_scene.hpp"
 #include "render/renderer.hpp"
@@ -12,11 +13,6 @@ namespace {
 
 using testing::decode_png;
 using testing::DecodedImage;
-
-Renderer& renderer() {
-  static Renderer shared(1);
-  return shared;
-}
 
 // The pixel containing a point of the canvas.
 Color pixel_at(const DecodedImage& image, Point p) { return image.at(static_cast<int>(p.x), static_cast<int>(p.y)); }
@@ -33,7 +29,7 @@ void expect_axis_drawn(const DecodedImage& image, const Camera& camera, const Ei
 TEST(FramesScene, IdentityFrontViewPutsXRightYUp) {
   const FramesOptions options{512, 512, 0, 0};
   const DecodedImage image = decode_png(
-      renderer().frames_png({Eigen::Matrix3d::Identity()}, Eigen::Matrix3d::Identity(), options));
+      testing::shared_renderer().frames_png({Eigen::Matrix3d::Identity()}, Eigen::Matrix3d::Identity(), options));
   ASSERT_EQ(image.width, 512);
   ASSERT_EQ(image.height, 512);
   const Camera camera(0, 0, 512, 512);
@@ -55,7 +51,7 @@ TEST(FramesScene, AzimuthNinetyLooksDownTheXAxis) {
   // The camera swings from +z to +x: world z then points left on screen, y still up.
   const FramesOptions options{300, 200, 90, 0};
   const DecodedImage image =
-      decode_png(renderer().frames_png({Eigen::Matrix3d::Identity()}, Eigen::Matrix3d::Identity(), options));
+      decode_png(testing::shared_renderer().frames_png({Eigen::Matrix3d::Identity()}, Eigen::Matrix3d::Identity(), options));
   ASSERT_EQ(image.width, 300);
   ASSERT_EQ(image.height, 200);
   const Camera camera(90, 0, 300, 200);
@@ -69,7 +65,7 @@ TEST(FramesScene, LastFrameIsBoldAndEarlierOnesFaded) {
   const Eigen::Matrix3d quarter = Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::Matrix3d start = Eigen::AngleAxisd(-EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const FramesOptions options{400, 400, 0, 0};
-  const DecodedImage image = decode_png(renderer().frames_png({quarter, Eigen::Matrix3d::Identity()}, start, options));
+  const DecodedImage image = decode_png(testing::shared_renderer().frames_png({quarter, Eigen::Matrix3d::Identity()}, start, options));
   const Camera camera(0, 0, 400, 400);
   expect_axis_drawn(image, camera, Eigen::Vector3d::UnitX(), kAxisColors[0]);
   // Bold: the last frame's axis covers the rows next to its centre line too.
@@ -96,7 +92,7 @@ TEST(FramesScene, LastFrameIsBoldAndEarlierOnesFaded) {
 TEST(FramesScene, NonFiniteFrameIsRejected) {
   Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
   bad(1, 2) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(renderer().frames_png({bad}, Eigen::Matrix3d::Identity(), FramesOptions{}), std::invalid_argument);
+  EXPECT_THROW(testing::shared_renderer().frames_png({bad}, Eigen::Matrix3d::Identity(), FramesOptions{}), std::invalid_argument);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "png_decode.hpp"
+#include "shared_renderer.hpp"
 #include "render/colormap.hpp"
 #include "render/heatmap_scene.hpp"
 #include "render/renderer.hpp"
@@ -12,11 +13,6 @@ namespace {
 
 using testing::decode_png;
 using testing::DecodedImage;
-
-Renderer& renderer() {
-  static Renderer shared(1);
-  return shared;
-}
 
 SweepCell cell(Method method, int n, double h, Status status, int iterations, std::optional<double> rate,
                double residual) {
@@ -55,7 +51,7 @@ SweepResult tiny_sweep() {
 
 // Every drawn cell's centre pixel has exactly the color its value or status calls for.
 void expect_cells_colored(const SweepResult& sweep, const HeatmapOptions& options) {
-  const DecodedImage image = decode_png(renderer().heatmap_png(sweep, options));
+  const DecodedImage image = decode_png(testing::shared_renderer().heatmap_png(sweep, options));
   const HeatmapGrid grid = make_grid(sweep);
   const HeatmapLayout layout = layout_heatmap(grid, options.metric, options.width, options.height);
   ASSERT_EQ(image.width, layout.width);
@@ -117,7 +113,7 @@ TEST(Heatmap, IterationScaleSpansTheConvergedCells) {
 TEST(Heatmap, LabelsLegendAndColorbarAreDrawn) {
   const SweepResult sweep = tiny_sweep();
   const HeatmapOptions options{0, 0, HeatmapMetric::iterations};
-  const DecodedImage image = decode_png(renderer().heatmap_png(sweep, options));
+  const DecodedImage image = decode_png(testing::shared_renderer().heatmap_png(sweep, options));
   const HeatmapLayout l = layout_heatmap(make_grid(sweep), options.metric, 0, 0);
   const int panels_bottom = l.top + l.panel_height();
   // Legend band below the axis labels, title band above the panels, N labels left, colorbar numbers right.
@@ -142,7 +138,7 @@ TEST(Heatmap, MetricNamesParse) {
 }
 
 TEST(Heatmap, EmptySweepIsRejected) {
-  EXPECT_THROW(renderer().heatmap_png(SweepResult{}, HeatmapOptions{}), std::invalid_argument);
+  EXPECT_THROW(testing::shared_renderer().heatmap_png(SweepResult{}, HeatmapOptions{}), std::invalid_argument);
 }
 
 }  // namespace
