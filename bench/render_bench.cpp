@@ -2,6 +2,7 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "render/renderer.hpp"
@@ -18,6 +19,11 @@ namespace render = lienewton::render;
 render::Renderer& renderer() {
   static render::Renderer shared(1);
   return shared;
+}
+
+bool is_png(const std::vector<unsigned char>& bytes) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return bytes.size() > 8 && std::equal(std::begin(kSignature), std::end(kSignature), bytes.begin());
 }
 
 // Twelve Newton iterates approaching a rotation from a start point.
@@ -54,7 +60,8 @@ void BM_FramesPng512(benchmark::State& state) {
   const auto frames = iterates();
   const Eigen::Matrix3d start = frames.front();
   const render::FramesOptions options{512, 512, 35, 20};
-  renderer().frames_png(frames, start, options);  // create the context outside the timing
+  // The first call creates the context outside the timing and checks that a PNG comes out.
+  if (!is_png(renderer().frames_png(frames, start, options))) state.SkipWithError("frames_png returned no PNG");
   for (auto _ : state) benchmark::DoNotOptimize(renderer().frames_png(frames, start, options));
   state.SetItemsProcessed(state.iterations());
 }
@@ -63,7 +70,7 @@ BENCHMARK(BM_FramesPng512)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_HeatmapPng512(benchmark::State& state) {
   const SweepResult sweep = default_grid();
   const render::HeatmapOptions options{512, 512, render::HeatmapMetric::iterations};
-  renderer().heatmap_png(sweep, options);
+  if (!is_png(renderer().heatmap_png(sweep, options))) state.SkipWithError("heatmap_png returned no PNG");
   for (auto _ : state) benchmark::DoNotOptimize(renderer().heatmap_png(sweep, options));
   state.SetItemsProcessed(state.iterations());
 }

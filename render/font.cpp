@@ -18,8 +18,8 @@ constexpr int kBandHeight = 120;  // each size is baked into its own band of atl
 
 std::vector<unsigned char> read_font_file(const char* path) {
   std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) bytes.clear();
+  std::vector<unsigned char> bytes;
+  if (in) bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   if (bytes.empty()) throw RenderUnavailable(std::string("cannot read the label font ") + path);
   return bytes;
 }

@@ -12,8 +12,11 @@ namespace {
 constexpr Color kSphereOutline{190, 190, 190, 255};
 constexpr Color kGreatCircle{222, 222, 222, 255};
 
-void check_finite(const Eigen::Matrix3d& m, const char* what) {
-  if (!m.allFinite()) throw std::invalid_argument(std::string(what) + " has a non-finite entry");
+// Rotations have entries in [-1, 1]; the loose bound only keeps projected coordinates within float range.
+void check_entries(const Eigen::Matrix3d& m, const char* what) {
+  if (!m.allFinite() || m.cwiseAbs().maxCoeff() > 10.0) {
+    throw std::invalid_argument(std::string(what) + " is not a rotation: an entry is non-finite or above 10");
+  }
 }
 
 // The great circle spanned by the unit vectors a and b.
@@ -65,8 +68,8 @@ void legend(Canvas& canvas) {
 
 void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::Matrix3d>& frames,
                  const Eigen::Matrix3d& start) {
-  check_finite(start, "start");
-  for (const Eigen::Matrix3d& frame : frames) check_finite(frame, "frame");
+  check_entries(start, "start");
+  for (const Eigen::Matrix3d& frame : frames) check_entries(frame, "frame");
 
   const Point origin = camera.project(Eigen::Vector3d::Zero());
   const float radius = static_cast<float>(camera.pixels_per_unit());

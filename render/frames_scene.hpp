@@ -14,7 +14,7 @@ namespace lienewton::render {
 inline constexpr Color kAxisColors[3] = {{215, 35, 35, 255}, {25, 150, 55, 255}, {35, 75, 215, 255}};
 inline constexpr float kFinalAxisWidth = 4.0f;
 
-// Throws std::invalid_argument if a matrix has a non-finite entry.
+// Throws std::invalid_argument if a matrix has a non-finite entry or one beyond +-10.
 void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::Matrix3d>& frames,
                  const Eigen::Matrix3d& start);
 

@@ -89,10 +89,13 @@ TEST(FramesScene, LastFrameIsBoldAndEarlierOnesFaded) {
   EXPECT_GT(other, 10);
 }
 
-TEST(FramesScene, NonFiniteFrameIsRejected) {
-  Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
-  bad(1, 2) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(testing::shared_renderer().frames_png({bad}, Eigen::Matrix3d::Identity(), FramesOptions{}), std::invalid_argument);
+TEST(FramesScene, NonRotationsAreRejected) {
+  Eigen::Matrix3d nan = Eigen::Matrix3d::Identity();
+  nan(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Matrix3d huge = 1e300 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+  EXPECT_THROW(testing::shared_renderer().frames_png({nan}, id, FramesOptions{}), std::invalid_argument);
+  EXPECT_THROW(testing::shared_renderer().frames_png({id}, huge, FramesOptions{}), std::invalid_argument);
 }
 
 }  // namespace
