@@ -1,4 +1,5 @@
 // The OpenAPI 3.0 document, generated from the route table plus the schemas of the JSON contract.
+#include <cctype>
 #include <nlohmann/json.hpp>
 
 #include "core/options.hpp"
@@ -174,7 +175,9 @@ std::string openapi_document() {
   const json all = schemas();
   json paths = json::object();
   for (const auto& r : route_table()) {
-    json op{{"operationId", r.method == "GET" ? "get_" + r.path : "post_" + r.path}, {"summary", r.summary}};
+    std::string id = r.method == "GET" ? "get" : "post";
+    for (char ch : r.path) id += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+    json op{{"operationId", id}, {"summary", r.summary}};
     if (!r.request_schema.empty()) {
       if (r.method == "POST") {
         op["requestBody"] = {{"required", true}, {"content", {{"application/json", {{"schema", ref(r.request_schema)}}}}}};
