@@ -86,9 +86,6 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
                 kSphereOutline);
   }
 
-  for (int axis : back_to_front(camera, start)) {
-    dashed(canvas, origin, camera.project(start.col(axis)), 2.0f, kAxisColors[axis]);
-  }
   // Earlier frames go from nearly background (oldest) to clearly colored (the one before the last).
   const std::size_t count = frames.size();
   for (std::size_t i = 0; i + 1 < count; ++i) {
@@ -97,6 +94,10 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
       canvas.line(origin, camera.project(frames[i].col(axis)), 1.5f,
                   mix(kAxisColors[axis], canvas.background(), 0.3 + 0.55 * age));
     }
+  }
+  // The start goes over the earlier frames: y_0 = z would otherwise hide it.
+  for (int axis : back_to_front(camera, start)) {
+    dashed(canvas, origin, camera.project(start.col(axis)), 2.0f, kAxisColors[axis]);
   }
   if (count > 0) {
     const Eigen::Matrix3d& last = frames.back();
