@@ -39,6 +39,10 @@ class Equation {
     bool in_domain = true; // false: z^-1 y is at angle pi, log (hence f) undefined
   };
 
+  // What an evaluation must provide: f alone (difference quotients, fixed point), or also the spectral
+  // form that the exact and truncated differentials reuse.
+  enum class Need { residual, differential };
+
   static Equation implicit_euler(G group, Element z, double h, const VectorField<G>& field) {
     return Equation(group, std::move(z), h, &field, {}, {});
   }
@@ -54,10 +58,10 @@ class Equation {
   const VectorField<G>* field() const { return field_; }
 
   // Version 1: f(y).
-  Point at(const Element& y) const {
+  Point at(const Element& y, Need need = Need::differential) const {
     Point p;
     p.y = y;
-    if (!read_log(p)) return p;
+    if (!read_log(p, need)) return p;
     if (field_) {
       p.hg = h_ * field_->g(y);
       p.f = p.v - p.hg;
@@ -68,13 +72,15 @@ class Equation {
   }
 
   // Version 2: f~(v) = f(z exp(v)); for implicit Euler v - h g(z exp v) (3.21), which needs no log.
-  Point at_algebra(const Vector& v) const {
+  Point at_algebra(const Vector& v, Need need = Need::differential) const {
     Point p;
-    p.v_form = group_.exp_form(v);
     p.v = v;
-    p.y = group_.times_exp_form(z_, p.v_form);
-    p.algebra_angle = group_.angle(p.v_form);
-    p.angle = principal_angle(p.algebra_angle);
+    p.y = group_.times_exp(z_, v);
+    if (need == Need::differential) {
+      p.v_form = group_.exp_form(v);
+      p.algebra_angle = group_.angle(p.v_form);
+      p.angle = principal_angle(p.algebra_angle);
+    }
     if (field_) {
       p.hg = h_ * field_->g(p.y);
       p.f = v - p.hg;
@@ -88,8 +94,8 @@ class Equation {
   Vector df(const Point& p, const Vector& u, Differential d) const {
     if (d == Differential::finite_difference) {
       const double t = difference_step(p, u);
-      const Point q = at(group_.times_exp(p.y, t * u));
-      if (!q.in_domain) throw son::LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+      const Point q = at(group_.times_exp(p.y, t * u), Need::residual);
+      if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
       return (q.f - p.f) / t;
     }
     if (!field_) return df_(p.y, u);
@@ -105,7 +111,7 @@ class Equation {
   Vector dftilde(const Point& p, const Vector& u, Differential d) const {
     if (d == Differential::finite_difference) {
       const double t = difference_step(p, u);
-      return (at_algebra(p.v + t * u).f - p.f) / t;
+      return (at_algebra(p.v + t * u, Need::residual).f - p.f) / t;
     }
     if (!field_) return df_(p.y, group_.dexp(p.v_form, u));
     switch (d) {
@@ -115,16 +121,16 @@ class Equation {
     }
   }
 
-  // The q x q matrix of df_y on the basis (throws son::LogDomainError if a difference quotient crosses pi). Exact and truncated differentials are assembled from the
-  // closed/spectral matrices of dexpinv and ad plus dg's matrix; differences perturb y by exp(t b_i), a plane
-  // rotation on SO(N).
+  // The q x q matrix of df_y on the basis (throws LogDomainError if a difference quotient crosses pi).
+  // Exact and truncated differentials are assembled from the closed/spectral matrices of dexpinv and ad
+  // plus dg's matrix; differences perturb y by exp(t b_i), a plane rotation on SO(N).
   Operator df_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
       Operator m = group_.operator_matrix();
       const double t = difference_step(p, group_.unit(0));
       for (int i = 0; i < group_.dim(); ++i) {
-        const Point q = at(group_.times_exp_unit(p.y, i, t));
-        if (!q.in_domain) throw son::LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+        const Point q = at(group_.times_exp_unit(p.y, i, t), Need::residual);
+        if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
         m.col(i) = (q.f - p.f) / t;
       }
       return m;
@@ -143,7 +149,8 @@ class Equation {
     if (d == Differential::finite_difference) {
       Operator m = group_.operator_matrix();
       const double t = difference_step(p, group_.unit(0));
-      for (int i = 0; i < group_.dim(); ++i) m.col(i) = (at_algebra(p.v + t * group_.unit(i)).f - p.f) / t;
+      for (int i = 0; i < group_.dim(); ++i)
+        m.col(i) = (at_algebra(p.v + t * group_.unit(i), Need::residual).f - p.f) / t;
       return m;
     }
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, group_.dexp(p.v_form, u)); });
@@ -197,17 +204,23 @@ class Equation {
   }
 
   // v = log(z^-1 y); false when z^-1 y is at the edge of log's domain (angle pi).
-  bool read_log(Point& p) const {
+  bool read_log(Point& p, Need need) const {
+    const Element w = group_.compose(z_inv_, p.y);
     try {
-      p.v_form = group_.log_form(group_.compose(z_inv_, p.y));
-    } catch (const son::LogDomainError& e) {
+      if (need == Need::differential) {
+        p.v_form = group_.log_form(w);
+        p.angle = group_.angle(p.v_form);
+        p.v = group_.coords(p.v_form);
+      } else {
+        p.v = group_.log_coords(w, p.angle);
+      }
+    } catch (const LogDomainError& e) {
       p.angle = std::isnan(e.angle()) ? so3::kPi : e.angle();
       p.in_domain = !field_;  // a user f does not need log
       return p.in_domain;
     }
-    p.angle = p.algebra_angle = group_.angle(p.v_form);
-    p.v = group_.coords(p.v_form);
-    p.in_domain = group_.log_defined(p.v_form) || !field_;
+    p.algebra_angle = p.angle;
+    p.in_domain = p.angle <= so3::kPi - son::kLogDomainMargin || !field_;
     return p.in_domain;
   }
 

@@ -107,7 +107,10 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   }
   res.cpu_seconds = thread_cpu_seconds() - cpu_start;
   res.y = y;
-  if (body) res.energy_drift = drift;
+  if (body) {
+    res.energy_drift = drift;
+    res.initial_energy = e0;
+  }
   if (res.status == Status::converged) res.reason = "every stage of " + std::to_string(steps) + " steps converged";
   return res;
 }

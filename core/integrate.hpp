@@ -39,6 +39,7 @@ struct IntegrateResult {
   std::vector<StepRecord> steps;
   std::optional<double> global_error;  // ||y_N - y_ref(t_end)||_F, when reference was requested
   std::optional<double> energy_drift;  // rigid body: max_k |E_k - E_0| / E_0
+  std::optional<double> initial_energy;  // rigid body: E_0 = E(y(0))
   double orthogonality_error = 0;      // max over steps of ||y^T y - I||_F
   Eigen::MatrixXd y;                   // final state
   std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))

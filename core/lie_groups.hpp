@@ -34,7 +34,12 @@ struct SO3Group {
   Vector bracket(const Vector& a, const Vector& b) const { return a.cross(b); }
 
   Spectral exp_form(const Vector& v) const { return v; }
-  Spectral log_form(const Element& r) const { return so3::log(r); }
+  Spectral log_form(const Element& r) const { return so3::checked_log(r); }  // throws LogDomainError
+  Vector log_coords(const Element& r, double& angle) const {
+    const Vector v = so3::checked_log(r);
+    angle = v.norm();
+    return v;
+  }
   Vector coords(const Spectral& s) const { return s; }
   Element element(const Spectral& s) const { return so3::exp(s); }
   double angle(const Spectral& s) const { return s.norm(); }
@@ -72,13 +77,15 @@ struct SONGroup {
 
   Spectral exp_form(const Vector& v) const { return son::spectral_form_of_skew(hat(v)); }
   Spectral log_form(const Element& r) const { return son::spectral_form_of_rotation(r); }  // throws LogDomainError
+  // log alone (no spectral form for the differentials): cheaper, see son::log.
+  Vector log_coords(const Element& r, double& angle) const { return vee(son::log(r, &angle)); }
   Vector coords(const Spectral& s) const { return vee(s.skew()); }
   Element element(const Spectral& s) const { return s.rotation(); }
   double angle(const Spectral& s) const { return s.max_angle(); }
   Vector dexp(const Spectral& s, const Vector& u) const { return vee(son::dexp(s, hat(u))); }
   Vector dexpinv(const Spectral& s, const Vector& u) const { return vee(son::dexpinv(s, hat(u))); }
   Element exp(const Vector& v) const { return son::exp(hat(v)); }
-  Element times_exp(const Element& y, const Vector& v) const { return exp_form(v).times_rotation(y); }
+  Element times_exp(const Element& y, const Vector& v) const { return y + y * son::expm1(hat(v)); }
   Element times_exp_form(const Element& y, const Spectral& s) const { return s.times_rotation(y); }
   Element times_exp_unit(const Element& y, int i, double t) const {
     int a = 0;  // basis element i is E_ab - E_ba in row-major order of the pairs a < b
@@ -117,6 +124,10 @@ struct RnGroup {
 
   Spectral exp_form(const Vector& v) const { return v; }
   Spectral log_form(const Element& r) const { return r; }
+  Vector log_coords(const Element& r, double& angle) const {
+    angle = 0.0;
+    return r;
+  }
   Vector coords(const Spectral& s) const { return s; }
   Element element(const Spectral& s) const { return s; }
   double angle(const Spectral&) const { return 0.0; }

@@ -106,8 +106,11 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
   typename G::Element y = eq.z();
   typename G::Vector u = group.zero();
   double step = 0.0;
+  // Difference quotients need f alone, also at y_n: the same log path as in the perturbed points.
+  const auto need = opt.differential == Differential::finite_difference ? Equation<G>::Need::residual
+                                                                        : Equation<G>::Need::differential;
   for (;;) {
-    const Point p = eq.at(y);
+    const Point p = eq.at(y, need);
     if (!p.in_domain) return finish(Status::left_log_domain, y, detail::angle_detail(p.angle, monitor.iteration()));
     if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) return finish(*stop, y);
     detail::StepOutcome outcome;
@@ -115,7 +118,7 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
       outcome = detail::newton_step<G>(
           krylov, [&] { return eq.df_matrix(p, opt.differential); },
           [&](const typename G::Vector& w) { return eq.df(p, w, opt.differential); }, p.f, u);
-    } catch (const son::LogDomainError& e) {
+    } catch (const LogDomainError& e) {
       return finish(Status::left_log_domain, y, e.what());
     }
     if (outcome != detail::StepOutcome::ok) return finish(detail::status_of(outcome), y);
@@ -169,7 +172,7 @@ SolveResult fixed_point(const Equation<G>& eq, const SolverOptions& opt, const T
   typename G::Element y = eq.z();
   double step = 0.0;
   for (;;) {
-    const Point p = eq.at(y);
+    const Point p = eq.at(y, Equation<G>::Need::residual);
     if (!p.in_domain) return finish(Status::left_log_domain, y, detail::angle_detail(p.angle, monitor.iteration()));
     if (auto stop = monitor.record(p.f.norm(), step, p.angle, y, detail::scale_of<G>(p))) return finish(*stop, y);
     const typename G::Element next = eq.fixed_point_map(p);  // (1.2)

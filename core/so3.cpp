@@ -1,6 +1,10 @@
 #include "so3.hpp"
 
+#include <Eigen/LU>  // determinant
 #include <array>
+#include <limits>
+
+#include "log_domain_error.hpp"
 
 namespace lienewton::so3 {
 namespace {
@@ -70,6 +74,15 @@ Vec log(const Mat& r) {
   axis.normalize();
   if (axis.dot(s) < 0.0) axis = -axis;
   return t * axis;
+}
+
+Vec checked_log(const Mat& r) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!r.allFinite()) throw LogDomainError("log of a matrix with non-finite entries", nan);
+  if (!((r.transpose() * r - Mat::Identity()).norm() <= 1e-8))
+    throw LogDomainError("log of a matrix that is not orthogonal", nan);
+  if (r.determinant() < 0.0) throw LogDomainError("log of a matrix with determinant -1 (not in SO(3))", nan);
+  return log(r);
 }
 
 }  // namespace lienewton::so3

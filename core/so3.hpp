@@ -71,8 +71,10 @@ inline double angle(const Mat& r) {
 // The principal logarithm: |log R| <= pi. Away from pi, w = t/sin t * vee(R - R^T)/2; near pi the axis comes
 // from the symmetric part (R + R^T)/2 - cos t I = (1 - cos t) a a^T, which loses no digits there. At exactly
 // pi the axis sign is taken from the largest diagonal entry, and |w| = pi. The caller must pass a rotation
-// (det +1, orthogonal); see checked_log in son.hpp for validation.
+// (det +1, orthogonal); checked_log validates first.
 Vec log(const Mat& r);
+// log after checking that r is finite, orthogonal to 1e-8 and has det +1; throws LogDomainError.
+Vec checked_log(const Mat& r);
 
 // dexp_w = I - B K + C K^2 and dexpinv_w = I + K/2 + D K^2 with K = hat(w) (2.10), (3.9).
 inline Mat dexp_matrix(const Vec& w) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
 
 namespace lienewton::son {
 namespace {
@@ -149,6 +150,7 @@ double SpectralForm::max_angle() const {
 }
 
 Mat SpectralForm::skew() const {
+  if (accurate_skew.size() > 0) return accurate_skew;
   const int n = static_cast<int>(q.rows());
   Mat l = Mat::Zero(n, n);
   for (const auto& b : blocks)
@@ -160,24 +162,28 @@ Mat SpectralForm::skew() const {
   return 0.5 * (v - v.transpose());
 }
 
+namespace {
+// blockdiag(rot theta, 1) - I, with cos - 1 = -2 sin^2(theta/2) free of cancellation.
+Mat rotation_minus_identity(const SpectralForm& s) {
+  const int n = static_cast<int>(s.q.rows());
+  Mat d = Mat::Zero(n, n);
+  for (const auto& b : s.blocks)
+    if (b.size == 2) {
+      const double h = std::sin(0.5 * b.theta);
+      d.block<2, 2>(b.start, b.start) = rotation2(b.theta);
+      d(b.start, b.start) = d(b.start + 1, b.start + 1) = -2.0 * h * h;
+    }
+  return d;
+}
+}  // namespace
+
 Mat SpectralForm::rotation() const {
   const int n = static_cast<int>(q.rows());
-  Mat d = Mat::Identity(n, n);
-  for (const auto& b : blocks)
-    if (b.size == 2) d.block<2, 2>(b.start, b.start) = rotation2(b.theta);
-  return q * d * q.transpose();
+  return Mat::Identity(n, n) + q * rotation_minus_identity(*this) * q.transpose();
 }
 
 Mat SpectralForm::times_rotation(const Mat& y) const {
-  const int n = static_cast<int>(q.rows());
-  Mat d = Mat::Zero(n, n);
-  for (const auto& b : blocks)
-    if (b.size == 2) {
-      const double s = std::sin(0.5 * b.theta);
-      d.block<2, 2>(b.start, b.start) = rotation2(b.theta) - Eigen::Matrix2d::Identity();
-      d(b.start, b.start) = d(b.start + 1, b.start + 1) = -2.0 * s * s;  // cos - 1 without cancellation
-    }
-  return y + (y * q) * d * q.transpose();
+  return y + (y * q) * rotation_minus_identity(*this) * q.transpose();
 }
 
 SpectralForm spectral_form_of_skew(const Mat& v) {
@@ -188,14 +194,82 @@ SpectralForm spectral_form_of_skew(const Mat& v) {
   return s;
 }
 
-SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, double margin) {
-  const auto nan = std::numeric_limits<double>::quiet_NaN();
-  if (r.rows() != r.cols() || r.rows() < 2) throw LogDomainError("log needs a square matrix of size >= 2", nan);
-  if (!r.allFinite()) throw LogDomainError("log of a matrix with non-finite entries", nan);
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Below this cosine (angles above 3pi/4) F(c) = acos(c)/sqrt(1 - c^2) grows too steep; use the Schur form.
+constexpr double kSymmetricLogMinCos = -0.7;
+
+void check_orthogonal(const Mat& r, double orthogonality_tol) {
+  if (r.rows() != r.cols() || r.rows() < 2) throw LogDomainError("log needs a square matrix of size >= 2", kNaN);
+  if (!r.allFinite()) throw LogDomainError("log of a matrix with non-finite entries", kNaN);
   const int n = static_cast<int>(r.rows());
   const double orth = (r.transpose() * r - Mat::Identity(n, n)).norm();
-  if (!(orth <= orthogonality_tol)) throw LogDomainError("log of a matrix that is not orthogonal", nan);
+  if (!(orth <= orthogonality_tol)) throw LogDomainError("log of a matrix that is not orthogonal", kNaN);
+}
 
+// F(c) = acos(c) / sqrt(1 - c^2) = t / sin t; near c = 1 its series in d = 1 - c (the direct form is 0/0).
+double angle_over_sine(double c) {
+  const double d = 1.0 - c;
+  if (std::abs(d) < 1e-3) return 1.0 + d * (1.0 / 3 + d * (2.0 / 15 + d * (4.0 / 70 + d * (8.0 / 315))));
+  return std::acos(c) / std::sqrt(d * (1.0 + c));
+}
+
+// log R = F(S) A (see son.hpp); nothing when an angle exceeds 3pi/4.
+std::optional<Mat> log_from_symmetric_part(const Mat& r, double& max_angle) {
+  const Mat s = 0.5 * (r + r.transpose());
+  const Mat a = 0.5 * (r - r.transpose());
+  const Eigen::SelfAdjointEigenSolver<Mat> eig(s);
+  const Vec& c = eig.eigenvalues();  // ascending
+  if (c(0) < kSymmetricLogMinCos) return std::nullopt;
+  const Vec f = c.unaryExpr([](double x) { return angle_over_sine(x); });
+  const Mat& v = eig.eigenvectors();
+  Mat l = v * f.asDiagonal() * (v.transpose() * a);
+  max_angle = std::acos(std::min(1.0, c(0)));
+  return Mat(0.5 * (l - l.transpose()));
+}
+
+}  // namespace
+
+Mat expm1(const Mat& v) {
+  const Mat v2 = v * v;
+  const Eigen::SelfAdjointEigenSolver<Mat> eig(0.5 * (v2 + v2.transpose()));
+  // Eigenvalue errors grow like eps |v|^2: beyond angle pi the Schur form keeps exp(v) orthogonal to N eps.
+  if (-eig.eigenvalues()(0) > kPi * kPi) {
+    const SpectralForm s = spectral_form_of_skew(v);
+    return s.q * rotation_minus_identity(s) * s.q.transpose();
+  }
+  const Eigen::Index n = v.rows();
+  Vec cos_minus_1(n), sinc(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double x = -eig.eigenvalues()(k);  // theta^2 (>= 0 up to rounding)
+    if (std::abs(x) < 1e-8) {                 // Taylor: truncation below x^3/720 < 2e-27
+      cos_minus_1(k) = -0.5 * x + x * x / 24.0;
+      sinc(k) = 1.0 - x / 6.0 + x * x / 120.0;
+    } else {
+      const double t = std::sqrt(x), h = std::sin(0.5 * t);
+      cos_minus_1(k) = -2.0 * h * h;
+      sinc(k) = std::sin(t) / t;
+    }
+  }
+  const Mat& q = eig.eigenvectors();
+  return q * (cos_minus_1.asDiagonal() * q.transpose() + sinc.asDiagonal() * (q.transpose() * v));
+}
+
+Mat log(const Mat& r, double* max_angle) {
+  check_orthogonal(r, 1e-8);
+  double angle = 0.0;
+  if (auto l = log_from_symmetric_part(r, angle)) {
+    if (max_angle) *max_angle = angle;
+    return *l;
+  }
+  const SpectralForm s = spectral_form_of_rotation(r);
+  if (max_angle) *max_angle = s.max_angle();
+  return s.skew();
+}
+
+SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, double margin) {
+  check_orthogonal(r, orthogonality_tol);
   Eigen::RealSchur<Mat> schur(r);
   const Mat& t = schur.matrixT();
   SpectralForm s;
@@ -206,10 +280,12 @@ SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, d
   int minus_ones = 0;
   for (const auto& b : s.blocks)
     if (b.size == 1 && t(b.start, b.start) < 0.0) ++minus_ones;
-  if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", nan);
+  if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
   const double angle = minus_ones > 0 ? kPi : s.max_angle();
   if (angle > kPi - margin)
     throw LogDomainError("log undefined: rotation angle " + std::to_string(angle) + " is at pi", angle);
+  double unused = 0.0;
+  if (auto l = log_from_symmetric_part(r, unused)) s.accurate_skew = std::move(*l);
   return s;
 }
 

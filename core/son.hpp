@@ -9,6 +9,8 @@
 // F(ad_v) is applied blockwise in Q's basis (see apply_ad_function in son.cpp).
 #include <Eigen/Dense>
 #include <stdexcept>
+
+#include "log_domain_error.hpp"
 #include <vector>
 
 namespace lienewton::son {
@@ -22,16 +24,7 @@ inline int algebra_dim(int n) { return n * (n - 1) / 2; }
 // branch flips under rounding, so a "solution" would be meaningless.
 inline constexpr double kLogDomainMargin = 1e-10;
 
-// log was asked for a matrix outside its domain: not orthogonal, det -1, non-finite, or an angle within
-// kLogDomainMargin of pi (angle() reports the largest rotation angle found, or NaN if none).
-class LogDomainError : public std::domain_error {
- public:
-  LogDomainError(const std::string& what, double angle) : std::domain_error(what), angle_(angle) {}
-  double angle() const { return angle_; }
-
- private:
-  double angle_;
-};
+using lienewton::LogDomainError;
 
 Mat hat(const Vec& alpha, int n);
 Vec vee(const Mat& m);  // coordinates of the skew part (m - m^T)/2
@@ -44,8 +37,9 @@ struct SpectralForm {
     double theta;            // 0 for size 1
   };
   std::vector<Block> blocks;
+  Mat accurate_skew;         // log computed from the symmetric part (see log below), when it was; else empty
   double max_angle() const;  // largest |theta|
-  Mat skew() const;          // v = Q blockdiag(theta J, 0) Q^T, exactly skew
+  Mat skew() const;          // v: accurate_skew if set, else Q blockdiag(theta J, 0) Q^T; exactly skew
   Mat rotation() const;      // exp(v) = Q blockdiag(rot theta, 1) Q^T
   // y exp(v) as y + (y Q) (blockdiag(rot theta, 1) - I) Q^T: see so3::expm1 for why not y * rotation().
   Mat times_rotation(const Mat& y) const;
@@ -56,8 +50,17 @@ SpectralForm spectral_form_of_skew(const Mat& v);
 SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol = 1e-8,
                                        double margin = kLogDomainMargin);
 
-inline Mat exp(const Mat& v) { return spectral_form_of_skew(v).rotation(); }
-inline Mat log(const Mat& r) { return spectral_form_of_rotation(r).skew(); }
+// exp(v) - I = (C(v^2) - I) + S(v^2) v with C(x) = cos sqrt(-x), S(x) = sin sqrt(-x) / sqrt(-x): entire
+// functions of the symmetric v^2, applied through its eigen-decomposition (cheaper than a real Schur form).
+// Small entries keep their relative accuracy, so y exp(v) = y + y expm1(v) stays on the group.
+Mat expm1(const Mat& v);
+inline Mat exp(const Mat& v) { return Mat::Identity(v.rows(), v.cols()) + expm1(v); }
+
+// log R = F(S) A with S = (R + R^T)/2, A = (R - R^T)/2 and F(cos t) = t / sin t, smooth on [-1 + delta, 1]:
+// S and A commute, and on each rotation plane S = cos t, A = sin t J. Taken through S's eigen-decomposition
+// when every angle is below 3pi/4 (F stays well-conditioned): small angles then keep their relative accuracy,
+// which a Schur form of R (absolute accuracy eps) loses. Otherwise the Schur form. Throws LogDomainError.
+Mat log(const Mat& r, double* max_angle = nullptr);
 double max_angle(const Mat& r);  // largest rotation angle of an orthogonal r (no domain check)
 
 inline Mat bracket(const Mat& a, const Mat& b) { return a * b - b * a; }

@@ -1,5 +1,6 @@
 #include "work_precision.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -38,6 +39,21 @@ IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisio
   return r;
 }
 
+// Short runs (tens of microseconds) are timed again until kTimingBudget of CPU time is spent, at most
+// kMaxRepeats times, and the minimum is kept: the minimum is the least disturbed by other work.
+constexpr double kTimingBudget = 5e-3;
+constexpr int kMaxRepeats = 20;
+
+double min_cpu_seconds(const IntegrateRequest& ir, double first) {
+  double best = first, spent = first;
+  for (int r = 1; r < kMaxRepeats && spent < kTimingBudget; ++r) {
+    const double t = integrate(ir).cpu_seconds;
+    best = std::min(best, t);
+    spent += t;
+  }
+  return best;
+}
+
 }  // namespace
 
 void validate(const WorkPrecisionRequest& req) {
@@ -69,10 +85,11 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
   std::mutex mutex;
   parallel_for(runs, 0, [&](int index) {
     const std::size_t c = static_cast<std::size_t>(index) / req.h.size(), k = static_cast<std::size_t>(index) % req.h.size();
-    const IntegrateResult run = integrate(run_request(req, req.choices[c], req.h[k]));
+    const IntegrateRequest ir = run_request(req, req.choices[c], req.h[k]);
+    const IntegrateResult run = integrate(ir);
     WorkPrecisionPoint& p = res.series[c].points[k];
     p.h = req.h[k];
-    p.cpu_seconds = run.cpu_seconds;
+    p.cpu_seconds = min_cpu_seconds(ir, run.cpu_seconds);
     p.status = run.status;
     p.error = (run.y - y_ref).norm();
     for (const auto& s : run.steps) p.iterations += s.iterations;

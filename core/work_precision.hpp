@@ -27,7 +27,7 @@ struct WorkPrecisionRequest {
 
 struct WorkPrecisionPoint {
   double h = 0;
-  double cpu_seconds = 0;
+  double cpu_seconds = 0;  // minimum over repeated runs (short runs are repeated up to 5 ms of CPU time)
   double error = 0;
   Status status = Status::converged;
   int iterations = 0;  // total Newton/fixed-point iterations of the run

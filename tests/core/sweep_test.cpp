@@ -36,8 +36,11 @@ TEST_P(PaperClaims, GridIsThePapers) {
 }
 
 TEST_P(PaperClaims, FixedPointFailsForLargeH) {
-  for (const auto& c : default_sweep(GetParam()).cells)
-    if (c.method == Method::fixed_point && c.h >= 4.0) EXPECT_NE(c.status, Status::converged) << c.n << " " << c.h;
+  for (const auto& c : default_sweep(GetParam()).cells) {
+    if (c.method == Method::fixed_point && c.h >= 4.0) {
+      EXPECT_NE(c.status, Status::converged) << c.n << " " << c.h;
+    }
+  }
 }
 
 TEST_P(PaperClaims, NewtonConvergesQuadraticallyWhereItConverges) {
@@ -66,8 +69,11 @@ TEST_P(PaperClaims, VersionOneConvergesOnMoreCellsThanVersionTwoAtSmallN) {
 }
 
 TEST_P(PaperClaims, EveryMethodConvergesForSmallH) {
-  for (const auto& c : default_sweep(GetParam()).cells)
-    if (c.h <= 1.0 / 64) EXPECT_EQ(c.status, Status::converged) << to_string(c.method) << " n=" << c.n << " h=" << c.h;
+  for (const auto& c : default_sweep(GetParam()).cells) {
+    if (c.h <= 1.0 / 64) {
+      EXPECT_EQ(c.status, Status::converged) << to_string(c.method) << " n=" << c.n << " h=" << c.h;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::paper_linear, ProblemKind::paper_sine));
