@@ -112,6 +112,10 @@ struct RigidBody {
   M dg(const M& y, const M& dir) const {  // d/dt of y^T m along y' = y dir is dir^T y^T m
     return embed(body_velocity(Eigen::Matrix3d(dir).transpose() * (Eigen::Matrix3d(y).transpose() * params.momentum)));
   }
+  // In rotation-vector coordinates dg_y(u) = -I^-1 (u x M) = I^-1 hat(M) u with M = y^T m.
+  Eigen::Matrix3d dg_matrix_so3(const Eigen::Matrix3d& y) const {
+    return params.inertia.cwiseInverse().asDiagonal() * so3::hat(y.transpose() * params.momentum);
+  }
   double energy(const Eigen::Matrix3d& y) const {
     const Eigen::Vector3d m = y.transpose() * params.momentum;
     return 0.5 * m.dot(body_velocity(m));
@@ -135,6 +139,8 @@ class VectorFieldOf final : public VectorField<G> {
   typename G::Operator dg_matrix(const G& group, const Element& y) const override {
     if constexpr (std::is_same_v<G, SONGroup> && requires { problem_.dg_matrix(y); }) {
       return problem_.dg_matrix(y);
+    } else if constexpr (std::is_same_v<G, SO3Group> && requires { problem_.dg_matrix_so3(y); }) {
+      return problem_.dg_matrix_so3(y);
     } else {
       return VectorField<G>::dg_matrix(group, y);
     }
