@@ -2,6 +2,7 @@
 //   SO3_*           SO(3) closed forms (fixed-size): exp, log, dexpinv (vector and matrix), 3x3 LU solve
 //   SON_*/N         SO(N) spectral path, N = 3, 15, 60: exp, log (with domain check), one dexpinv application
 //   Eigen_*/N       baseline: MatrixFunctions exp/log, dexpinv by a forward difference of log, dense LU
+//   SO3_NewtonIteration  one Newton Version 1 iteration on SO(3), to compare with the sum of its parts
 //   Solve_*         a whole SO(3) Newton Version 1 solve (h = 0.5, exact differential) on rigid-body and
 //                   paper-linear vs the same algorithm on the baseline with the finite-difference differential
 //   Sweep_*         the paper's default sweep (paper-linear and paper-sine x 3 methods x N = 2..15 x
@@ -17,8 +18,10 @@
 #include <vector>
 
 #include "bench/eigen_baseline.hpp"
+#include "core/equation.hpp"
 #include "core/lie_groups.hpp"
 #include "core/parallel_for.hpp"
+#include "core/problems.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
 #include "core/sweep.hpp"
@@ -261,6 +264,47 @@ void Solve_LienewtonFD(benchmark::State& state, ProblemKind problem) {
 }
 BENCHMARK_CAPTURE(Solve_LienewtonFD, rigid_body, ProblemKind::rigid_body)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(Solve_LienewtonFD, paper_linear, ProblemKind::paper_linear)->Unit(benchmark::kMicrosecond);
+
+// One Newton Version 1 iteration on SO(3) (exact differential), exactly as newton_group runs it: evaluate f
+// at y_n with the spectral form, assemble the 3x3 differential, LU-solve, y_{n+1} = y_n exp(u). Cycled over
+// the iterates of the rigid-body solve above. Compare with SO3_Exp + SO3_Log + SO3_DexpinvMatrix + SO3_LUSolve3.
+void SO3_NewtonIteration(benchmark::State& state) {
+  SolveRequest req;
+  req.problem = ProblemKind::rigid_body;
+  req.n = 3;
+  req.h = 0.5;
+  req.z = start_point(3, 1);
+  req.include_iterates = true;
+  const SolveResult solved = solve(req);
+  const SO3Group group;
+  const auto field = make_field(group, req.problem, req.rigid_body);
+  const auto eq = Equation<SO3Group>::implicit_euler(group, Eigen::Matrix3d(*req.z), req.h, *field);
+  std::vector<Eigen::Matrix3d> ys;
+  for (const auto& t : solved.trace) {
+    if (t.iteration < solved.iterations) ys.push_back(t.y);
+  }
+  if (ys.empty()) {
+    state.SkipWithError("no iterates");
+    return;
+  }
+  // The first iteration must reproduce the solver's y_1.
+  {
+    const auto p = eq.at(ys[0], Equation<SO3Group>::Need::differential);
+    const Eigen::Vector3d u = -Eigen::PartialPivLU<Eigen::Matrix3d>(eq.df_matrix(p, Differential::exact)).solve(p.f);
+    if (ys.size() > 1 && (group.times_exp(ys[0], u) - ys[1]).norm() > 1e-14) state.SkipWithError("iteration != solver's");
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto p = eq.at(ys[i++ % ys.size()], Equation<SO3Group>::Need::differential);
+    const Eigen::Matrix3d d = eq.df_matrix(p, Differential::exact);
+    const Eigen::Vector3d u = -Eigen::PartialPivLU<Eigen::Matrix3d>(d).solve(p.f);
+    Eigen::Matrix3d next = group.times_exp(p.y, u);
+    benchmark::DoNotOptimize(next);
+  }
+  state.counters["iterates"] = static_cast<double>(ys.size());
+  state.SetLabel("rigid-body, h = 0.5, exact: f(y) + 3x3 differential + LU + y exp(u)");
+}
+BENCHMARK(SO3_NewtonIteration);
 
 void Solve_Baseline(benchmark::State& state, ProblemKind problem) {
   baseline::Problem p;
