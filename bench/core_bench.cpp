@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/alloc_count.hpp"
 #include "bench/eigen_baseline.hpp"
 #include "core/equation.hpp"
 #include "core/lie_groups.hpp"
@@ -232,12 +233,15 @@ void Solve_Lienewton(benchmark::State& state, ProblemKind problem) {
   req.z = start_point(3, 1);
   const SolveResult check = solve(req);
   if (check.status != Status::converged) state.SkipWithError("lienewton SO(3) solve did not converge");
+  // Heap allocations of a whole solve() call (request copy, field, result and trace: outside the iterations).
+  const long allocations = bench::allocations_in([&] { benchmark::DoNotOptimize(solve(req).residual); });
   for (auto _ : state) {
     SolveResult r = solve(req);
     benchmark::DoNotOptimize(r.residual);
   }
   state.counters["iterations"] = check.iterations;
   state.counters["residual"] = check.residual;
+  state.counters["heap_allocations_per_solve"] = static_cast<double>(allocations);
   state.SetLabel(std::string(problem_name(problem)) + ", newton-group, exact, h = 0.5");
 }
 BENCHMARK_CAPTURE(Solve_Lienewton, rigid_body, ProblemKind::rigid_body)->Unit(benchmark::kMicrosecond);
@@ -293,15 +297,20 @@ void SO3_NewtonIteration(benchmark::State& state) {
     const Eigen::Vector3d u = -Eigen::PartialPivLU<Eigen::Matrix3d>(eq.df_matrix(p, Differential::exact)).solve(p.f);
     if (ys.size() > 1 && (group.times_exp(ys[0], u) - ys[1]).norm() > 1e-14) state.SkipWithError("iteration != solver's");
   }
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const auto p = eq.at(ys[i++ % ys.size()], Equation<SO3Group>::Need::differential);
+  auto iteration = [&](const Eigen::Matrix3d& y) {
+    const auto p = eq.at(y, Equation<SO3Group>::Need::differential);
     const Eigen::Matrix3d d = eq.df_matrix(p, Differential::exact);
     const Eigen::Vector3d u = -Eigen::PartialPivLU<Eigen::Matrix3d>(d).solve(p.f);
     Eigen::Matrix3d next = group.times_exp(p.y, u);
     benchmark::DoNotOptimize(next);
-  }
+  };
+  long allocations = 0;
+  for (const auto& y : ys) allocations += bench::allocations_in([&] { iteration(y); });
+  if (allocations != 0) state.SkipWithError("an SO(3) iteration allocated on the heap");
+  std::size_t i = 0;
+  for (auto _ : state) iteration(ys[i++ % ys.size()]);
   state.counters["iterates"] = static_cast<double>(ys.size());
+  state.counters["heap_allocations"] = static_cast<double>(allocations);
   state.SetLabel("rigid-body, h = 0.5, exact: f(y) + 3x3 differential + LU + y exp(u)");
 }
 BENCHMARK(SO3_NewtonIteration);

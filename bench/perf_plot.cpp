@@ -1,8 +1,9 @@
-// lienewton-perf-plot: reads Google Benchmark JSON from lienewton-bench (PerIteration/<differential>/N with the
-// per_iteration counter) and draws time per Newton iteration vs N on log-log axes with the project's renderer.
+// lienewton-perf-plot: reads Google Benchmark JSON from lienewton-bench (PerIteration/<differential>/N and
+// LargeN_Solve/gmres/N, with the per_iteration counter) and draws time per Newton iteration vs N on log-log axes with the project's renderer.
 //   lienewton-perf-plot bench.json docs/time_per_iteration.png [min_n_for_fit = 16]
 // Uses the "median" aggregate when the run has repetitions, else the plain iteration entries. Prints, per
-// differential, the least-squares slope of log(time per iteration) against log N over N >= min_n_for_fit.
+// differential, the least-squares slope of log(time per iteration) against log N over N >= min_n_for_fit, and
+// separately over the lu (N <= 40) and gmres (N > 40) parts of that range.
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -21,12 +22,12 @@ struct Series {
   std::map<int, double> seconds_per_iteration;  // by N
 };
 
-// log-log least-squares slope over the points with N >= min_n.
-double fitted_exponent(const Series& s, int min_n) {
+// log-log least-squares slope over the points with min_n <= N <= max_n.
+double fitted_exponent(const Series& s, int min_n, int max_n = 1 << 30) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int k = 0;
   for (const auto& [n, t] : s.seconds_per_iteration) {
-    if (n < min_n) continue;
+    if (n < min_n || n > max_n) continue;
     const double x = std::log(n), y = std::log(t);
     sx += x, sy += y, sxx += x * x, sxy += x * y;
     ++k;
@@ -50,15 +51,19 @@ int main(int argc, char** argv) {
     bool has_medians = false;
     for (const auto& b : doc.at("benchmarks")) has_medians |= b.value("aggregate_name", "") == "median";
 
-    const std::vector<std::pair<std::string, std::string>> kDifferentials = {{"exact", "exact"},
-                                                                             {"fd", "finite-difference"}};
+    // Series: benchmark name prefix -> legend label. The auto choice per differential, and the exact
+    // differential with GMRES forced at every N (where the crossover really is).
+    const std::vector<std::pair<std::string, std::string>> kDifferentials = {
+        {"PerIteration/exact/", "exact, auto (lu N <= 40, gmres above)"},
+        {"PerIteration/fd/", "finite-difference, auto"},
+        {"LargeN_Solve/gmres/", "exact, gmres forced"}};
     std::map<std::string, Series> series;
     for (const auto& b : doc.at("benchmarks")) {
       if (has_medians ? b.value("aggregate_name", "") != "median" : b.value("run_type", "") != "iteration") continue;
       if (b.contains("error_occurred") && b["error_occurred"].get<bool>()) continue;
       const std::string name = b.value("run_name", b.value("name", ""));
       for (const auto& [key, label] : kDifferentials) {
-        const std::string prefix = "PerIteration/" + key + "/";
+        const std::string& prefix = key;
         if (name.rfind(prefix, 0) != 0 || !b.contains("per_iteration")) continue;
         series[key].seconds_per_iteration[std::stoi(name.substr(prefix.size()))] = b["per_iteration"].get<double>();
       }
@@ -66,7 +71,7 @@ int main(int argc, char** argv) {
 
     lienewton::render::LineChart chart;
     chart.title = "Newton Version 1, paper-linear, h = 2^-2: time per iteration";
-    chart.x_label = "N (SO(N), q = N(N-1)/2 unknowns; lu up to N = 40, gmres above)";
+    chart.x_label = "N (SO(N), q = N(N-1)/2 unknowns)";
     chart.y_label = "time / iteration";
     chart.y_unit = lienewton::render::AxisUnit::seconds;
     for (const auto& [key, label] : kDifferentials) {
@@ -75,15 +80,19 @@ int main(int argc, char** argv) {
       lienewton::render::LineSeries s;
       const double slope = fitted_exponent(it->second, min_n);
       char text[128];
-      std::snprintf(text, sizeof text, "%s (fit N >= %d: N^%.2f)", label.c_str(), min_n, slope);
+      std::snprintf(text, sizeof text, "%s: fit N >= %d ~ N^%.2f", label.c_str(), min_n, slope);
       s.label = text;
       s.color = lienewton::render::series_color(chart.series.size());
       for (const auto& [n, t] : it->second.seconds_per_iteration) {
         s.x.push_back(n);
         s.y.push_back(t);
-        std::printf("%s N=%d per_iteration=%.6g s\n", key.c_str(), n, t);
+        std::printf("%s N=%d per_iteration=%.6g s\n", label.c_str(), n, t);
       }
-      std::printf("%s fitted exponent (N >= %d): %.3f\n", key.c_str(), min_n, slope);
+      std::printf("%s fitted exponent (N >= %d): %.3f\n", label.c_str(), min_n, slope);
+      // The automatic choice switches solver at kKrylovThreshold = 40: each regime's own slope too.
+      std::printf("%s fitted exponent (%d <= N <= 40): %.3f\n", label.c_str(), min_n,
+                  fitted_exponent(it->second, min_n, 40));
+      std::printf("%s fitted exponent (N > 40): %.3f\n", label.c_str(), fitted_exponent(it->second, 41));
       chart.series.push_back(std::move(s));
     }
     const std::vector<std::uint8_t> png = lienewton::render::line_chart_png(chart, 900, 600);
