@@ -17,7 +17,9 @@ namespace render = lienewton::render;
 
 // One renderer for all benchmarks: contexts are long-lived, as in the service, so JIT warm-up is not timed.
 render::Renderer& renderer() {
-  static render::Renderer shared(1);
+  // Leaked on purpose: destroyed among the exit handlers, its contexts were made current after Mesa's own
+  // teardown had run (SIGSEGV in OSMesaMakeCurrent at exit, seen when LargeN_Solve ran before BM_*).
+  static render::Renderer& shared = *new render::Renderer(1);
   return shared;
 }
 
