@@ -18,9 +18,9 @@
 
 namespace lienewton {
 
-// Above this N (q = N(N-1)/2 = 780 unknowns) the Newton system is solved matrix-free by GMRES: assembling
+// Above this N (q = N(N-1)/2 = 120 unknowns) the Newton system is solved matrix-free by GMRES: assembling
 // and factoring it costs O(N^6) time and O(N^4) memory, one application of the spectral dexpinv O(N^3).
-inline constexpr int kKrylovThreshold = 40;
+inline constexpr int kKrylovThreshold = 16;
 inline constexpr int kMaxKrylovIterations = 300;
 
 namespace detail {

@@ -34,5 +34,6 @@ inline constexpr Method kAllMethods[] = {Method::fixed_point, Method::newton_gro
 inline constexpr Differential kAllDifferentials[] = {Differential::finite_difference, Differential::dexpinv_0,
                                                      Differential::dexpinv_1, Differential::exact};
 inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Integrator::dirk_cg2};
+inline constexpr LinearSolver kAllLinearSolvers[] = {LinearSolver::auto_select, LinearSolver::lu, LinearSolver::gmres};
 
 }  // namespace lienewton

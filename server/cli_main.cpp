@@ -11,6 +11,7 @@
 #include "render/renderer.hpp"
 #include "server/http_errors.hpp"
 #include "server/json_codec.hpp"
+#include "server/paper_figures.hpp"
 #include "server/render_requests.hpp"
 
 namespace {
@@ -28,6 +29,8 @@ constexpr const char* kUsage =
     "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
     "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
     "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
+    "  figures [DIFF]   the paper's Figures 5.1 and 5.2 as Markdown tables (no stdin): the default sweep of\n"
+    "                   paper-linear and paper-sine, differential DIFF (default finite-difference, as the paper)\n"
     "  --help           this text\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
@@ -69,6 +72,22 @@ int run(const std::string& command, const std::string& sub) {
   return 0;
 }
 
+// Both problems of section 5 on the paper's default grid, as tables.
+int figures(const std::string& differential_name) {
+  const auto differential = differential_from_string(differential_name.empty() ? "finite-difference" : differential_name);
+  if (!differential) return fail(2, "invalid_field", "differential", "unknown differential " + differential_name);
+  for (ProblemKind problem : {ProblemKind::paper_linear, ProblemKind::paper_sine}) {
+    SweepRequest req;
+    req.problem = problem;
+    req.differential = *differential;
+    const SweepResult result = sweep(req);
+    std::cout << "## " << to_string(problem) << " (" << result.cells.size() << " cells in " << result.seconds
+              << " s)\n\n"
+              << figure_tables(result, problem, *differential);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,6 +97,7 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
+  if (command == "figures" && argc <= 3) return figures(sub);
   const bool plain = command == "solve" || command == "sweep" || command == "integrate" || command == "work-precision";
   const bool render = command == "render" && (sub == "frames" || sub == "heatmap");
   if ((!plain && !render) || argc > (render ? 3 : 2)) {

@@ -211,7 +211,7 @@ json parse_body(std::string_view text) {
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
-                      "include_iterates", "rigid_body"});
+                      "include_iterates", "rigid_body", "linear_solver"});
   SolveRequest r;
   if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
   r.n = read_n(f, limits, r.n);
@@ -224,6 +224,8 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
   if (auto x = f["include_iterates"]) r.include_iterates = read_bool(*x, "include_iterates");
   if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
+  if (auto x = f["linear_solver"])
+    r.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
   return r;
 }
 
@@ -438,6 +440,7 @@ json to_json(const IntegrateResult& r) {
               {"steps", std::move(steps)},
               {"global_error", optional_number(r.global_error)},
               {"energy_drift", optional_number(r.energy_drift)},
+              {"initial_energy", optional_number(r.initial_energy)},
               {"orthogonality_error", finite_or_null(r.orthogonality_error)},
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},

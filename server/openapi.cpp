@@ -58,7 +58,10 @@ json schemas() {
                               {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
                               {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}});
+                              {"rigid_body", ref("RigidBody")},
+                              {"linear_solver", json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}},
+                                                     {"default", "auto"},
+                                                     {"description", "auto: dense LU up to N = 40, matrix-free GMRES above"}}}});
   const json trace_props = {{"iteration", integer("n")}, {"residual", nullable_number("||f(y_n)||")},
                             {"step", nullable_number("||u_{n-1}||")}, {"angle", nullable_number("largest rotation angle of z^-1 y_n")},
                             {"distance_to_pi", nullable_number("pi - angle")},
@@ -91,6 +94,7 @@ json schemas() {
   s["IntegrateResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"steps", array_of(ref("StepRecord"))},
                                  {"global_error", nullable_number("||y_N - y_ref(t_end)||_F")},
                                  {"energy_drift", nullable_number("rigid body: max relative energy change")},
+                                 {"initial_energy", nullable_number("rigid body: kinetic energy at t = 0")},
                                  {"orthogonality_error", nullable_number("")}, {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
                                  {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
