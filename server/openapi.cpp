@@ -61,7 +61,7 @@ json schemas() {
                               {"rigid_body", ref("RigidBody")},
                               {"linear_solver", json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}},
                                                      {"default", "auto"},
-                                                     {"description", "auto: dense LU up to N = 40, matrix-free GMRES above"}}}});
+                                                     {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}}}});
   const json trace_props = {{"iteration", integer("n")}, {"residual", nullable_number("||f(y_n)||")},
                             {"step", nullable_number("||u_{n-1}||")}, {"angle", nullable_number("largest rotation angle of z^-1 y_n")},
                             {"distance_to_pi", nullable_number("pi - angle")},
