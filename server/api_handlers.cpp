@@ -188,7 +188,7 @@ void ApiHandlers::stream(httplib::Response& res, std::shared_ptr<Slot> slot, Job
   auto stop = std::make_shared<StopCheck>(make_stop());
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
   const char* type = sse ? "text/event-stream" : "application/x-ndjson";
-  res.set_chunked_content_provider(type, [this, slot, job = std::move(job), stop, sse](std::size_t, httplib::DataSink& sink) {
+  res.set_chunked_content_provider(type, [slot, job = std::move(job), stop, sse](std::size_t, httplib::DataSink& sink) {
     auto write = [&](const char* kind, json record) {
       // "type" first, for people reading the stream; the rest keeps the result's field order.
       std::string line = dump(record);
