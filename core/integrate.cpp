@@ -11,7 +11,6 @@
 namespace lienewton {
 namespace {
 
-constexpr double kMaxTEnd = 100.0;
 constexpr double kMaxSteps = 1e5;
 
 // A diagonally implicit Crouch-Grossman method (section 6): stage i solves
@@ -120,7 +119,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
 void validate(const IntegrateRequest& req) {
   validation::check_n("n", req.n);
   validation::check_h("h", req.h);
-  if (!std::isfinite(req.t_end) || req.t_end <= 0.0 || req.t_end > kMaxTEnd)
+  if (!std::isfinite(req.t_end) || req.t_end <= 0.0 || req.t_end > validation::kMaxTEnd)
     validation::invalid("t_end", "t_end must be a finite number in (0, 100]");
   if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
   if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");

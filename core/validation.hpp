@@ -12,6 +12,7 @@ namespace lienewton::validation {
 inline constexpr int kMaxN = 100000;        // beyond any machine's memory; front ends set tighter caps
 inline constexpr int kMaxIterationsLimit = 100000;
 inline constexpr double kMaxH = 1e6;
+inline constexpr double kMaxTEnd = 100.0;
 
 [[noreturn]] inline void invalid(const std::string& field, const std::string& message) {
   throw RequestError(RequestError::Kind::invalid, field, message);

@@ -1,5 +1,7 @@
 #include "server/json_codec.hpp"
 
+#include "core/validation.hpp"
+
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -9,8 +11,6 @@
 namespace lienewton::service {
 namespace {
 
-constexpr double kMaxH = 1e6;
-constexpr double kMaxTEnd = 1e6;
 constexpr int kMaxDepth = 32;  // deepest legal request is 4 levels; deeper input is an attack or a mistake
 
 [[noreturn]] void fail(const std::string& field, const std::string& message) {
@@ -78,12 +78,15 @@ double read_number(const json& v, const std::string& field, const std::string& m
   return d;
 }
 
-double read_h(const json& v, const std::string& field) {
-  const std::string message = field + " must be a finite number in (0, 1e6]";
-  const double h = read_number(v, field, message);
-  if (!(h > 0 && h <= kMaxH)) fail(field, message);
-  return h;
+// A finite number in (0, max]; max_text is how the message spells max.
+double read_positive(const json& v, const std::string& field, double max, const std::string& max_text) {
+  const std::string message = field + " must be a finite number in (0, " + max_text + "]";
+  const double x = read_number(v, field, message);
+  if (!(x > 0 && x <= max)) fail(field, message);
+  return x;
 }
+
+double read_h(const json& v, const std::string& field) { return read_positive(v, field, validation::kMaxH, "1e6"); }
 
 double read_tol(const json& v, const std::string& field) {
   const std::string message = field + " must be a finite number in [1e-16, 1]";
@@ -93,10 +96,7 @@ double read_tol(const json& v, const std::string& field) {
 }
 
 double read_t_end(const json& v, const std::string& field) {
-  const std::string message = field + " must be a finite number in (0, 1e6]";
-  const double t = read_number(v, field, message);
-  if (!(t > 0 && t <= kMaxTEnd)) fail(field, message);
-  return t;
+  return read_positive(v, field, validation::kMaxTEnd, "100");
 }
 
 bool read_bool(const json& v, const std::string& field) {
