@@ -4,6 +4,7 @@
 
 #include "core/options.hpp"
 #include "core/status.hpp"
+#include "core/validation.hpp"
 #include "server/routes.hpp"
 
 namespace lienewton::service {
@@ -48,7 +49,7 @@ json schemas() {
   const json tol = json{{"type", "number"}, {"minimum", 1e-16}, {"maximum", 1}, {"default", 1e-13}, {"description", "absolute tolerance on ||f||"}};
   const json max_iterations = json{{"type", "integer"}, {"minimum", 1}, {"default", 100}, {"description", "capped by --max-iterations"}};
   const json seed = json{{"type", "integer"}, {"minimum", 0}, {"maximum", 18446744073709551615.0}, {"default", 1}, {"description", "unsigned 64-bit seed of the random start point"}};
-  const json t_end = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 1e6}, {"description", "end time"}};
+  const json t_end = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", validation::kMaxTEnd}, {"description", "end time"}};
   const json width = json{{"type", "integer"}, {"minimum", 64}, {"maximum", 4096}};
   const json rigid_body = object({{"inertia", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "principal moments (positive)"}}},
                                   {"momentum", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "spatial angular momentum"}}}});
