@@ -1,6 +1,6 @@
 #include "server/api_handlers.hpp"
 
-#include "server/httplib_include.hpp"
+#include <set>
 
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
@@ -9,6 +9,8 @@
 #include "server/http_errors.hpp"
 #include "server/query_params.hpp"
 #include "server/render_requests.hpp"
+#include "server/routes.hpp"
+#include "server/static_files.hpp"
 #include "render/renderer.hpp"
 
 namespace lienewton::service {
@@ -34,8 +36,27 @@ class ApiHandlers::Slot {
   bool streaming_ = false;
 };
 
-ApiHandlers::ApiHandlers(const ServerOptions& options, Metrics& metrics, const std::atomic<bool>& abort_work)
-    : options_(options), metrics_(metrics), abort_work_(abort_work),
+namespace {
+
+// A GET form carries its request as query parameters; list_fields are array-valued in the JSON request.
+json request_json(const HttpRequest& req, const std::set<std::string>& list_fields = {}) {
+  return req.method == "POST" ? parse_body(req.body) : query_to_json(req.params, list_fields);
+}
+
+HttpResponse json_response(std::string body, int status = 200) {
+  HttpResponse res;
+  res.status = status;
+  res.content_type = "application/json";
+  res.body = std::move(body);
+  return res;
+}
+
+}  // namespace
+
+ApiHandlers::ApiHandlers(const ServerOptions& options, Metrics& metrics, const std::atomic<bool>& draining,
+                         const std::atomic<bool>& abort_work)
+    : options_(options), metrics_(metrics), draining_(draining), abort_work_(abort_work),
+      openapi_document_(openapi_document()),
       renderer_(std::make_unique<render::Renderer>(options.render_workers)) {}
 
 ApiHandlers::~ApiHandlers() = default;
@@ -74,20 +95,11 @@ void ApiHandlers::throw_stopped(const StopCheck& stop) const {
   }
 }
 
-json ApiHandlers::body_json(const RouteSpec& route, const httplib::Request& req) const {
-  if (route.method == "GET") {
-    // The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
-    if (route.id == RouteId::render_heatmap_get) return query_to_json(req.params, {"methods", "n", "h"});
-    return query_to_json(req.params);
-  }
-  return parse_body(req.body);
-}
-
 ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
   SolveRequest request = solve_request_from_json(body, options_.limits);
   validate(request);
   return [this, request](const Emit& emit, StopCheck& stop) {
-    SolveResult result = solve(request, [&](const TraceRecord& t) {
+    SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
       progress(t.iteration);
       if (emit && !emit("iteration", to_json(t, request.include_iterates))) return false;
       return !stop.should_stop();
@@ -104,7 +116,7 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
   return [this, request](const Emit& emit, StopCheck& stop) {
     int index = 0;
     bool stopped = false;
-    SweepResult result = sweep(request, [&](const SweepCell& cell) {
+    SweepResult result = lienewton::sweep(request, [&](const SweepCell& cell) {
       progress(index++);
       metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
       if (emit && !emit("cell", to_json(cell))) return !(stopped = true);
@@ -120,7 +132,7 @@ ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
   validate(request);
   return [this, request](const Emit& emit, StopCheck& stop) {
     bool stopped = false;
-    IntegrateResult result = integrate(request, [&](const StepRecord& step) {
+    IntegrateResult result = lienewton::integrate(request, [&](const StepRecord& step) {
       progress(step.step);
       if (emit && !emit("step", to_json(step))) return !(stopped = true);
       return !(stopped = stop.should_stop());
@@ -138,7 +150,7 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   return [this, request](const Emit& emit, StopCheck& stop) {
     int index = 0;
     bool stopped = false;
-    WorkPrecisionResult result = work_precision(request, [&](const WorkPrecisionSeries& series) {
+    WorkPrecisionResult result = lienewton::work_precision(request, [&](const WorkPrecisionSeries& series) {
       progress(index++);
       if (emit && !emit("series", to_json(series))) return !(stopped = true);
       return !(stopped = stop.should_stop());
@@ -148,53 +160,61 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   };
 }
 
-void ApiHandlers::handle(const RouteSpec& route, const httplib::Request& req, httplib::Response& res) {
-  try {
-    const json body = body_json(route, req);
-    switch (route.id) {
-      case RouteId::solve: return serve(req, res, solve_job(body), false);
-      case RouteId::solve_events: return serve(req, res, solve_job(body), true);
-      case RouteId::sweep: return serve(req, res, sweep_job(body), false);
-      case RouteId::integrate: return serve(req, res, integrate_job(body), false);
-      case RouteId::work_precision: return serve(req, res, work_precision_job(body), false);
-      default: return render(route, body, res);
-    }
-  } catch (const ApiError& e) {
-    if (e.status() == 503) res.set_header("Retry-After", "1");
-    send_error(res, e.status(), e.code(), e.field(), e.what());
-  } catch (const RequestError& e) {
-    const int status = e.kind() == RequestError::Kind::unprocessable ? 422 : 400;
-    send_error(res, status, error_code(e), e.field(), e.what());
-  }
+HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, solve_job(request_json(req)), false); }
+HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
+  return serve(req, solve_job(request_json(req)), true);
 }
+HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, sweep_job(request_json(req)), false); }
+HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
+  return serve(req, integrate_job(request_json(req)), false);
+}
+HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
+  return serve(req, work_precision_job(request_json(req)), false);
+}
+HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), true); }
+// The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
+HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
+  return render(request_json(req, {"methods", "n", "h"}), false);
+}
+HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
+HttpResponse ApiHandlers::readyz(const HttpRequest&) {
+  return draining_.load() ? json_response(R"({"status":"draining"})", 503) : json_response(R"({"status":"ok"})");
+}
+HttpResponse ApiHandlers::metrics(const HttpRequest&) {
+  HttpResponse res;
+  res.content_type = "text/plain; version=0.0.4";
+  res.body = metrics_.render();
+  return res;
+}
+HttpResponse ApiHandlers::openapi(const HttpRequest&) { return json_response(openapi_document_); }
+HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
-void ApiHandlers::serve(const httplib::Request& req, httplib::Response& res, Job job, bool sse) {
+HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse) {
   auto slot = acquire_slot();
-  const bool ndjson = req.get_header_value("Accept").find("application/x-ndjson") != std::string::npos;
-  if (sse || ndjson) return stream(res, std::move(slot), std::move(job), sse);
+  const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
+  if (sse || ndjson) return stream(std::move(slot), std::move(job), sse);
   StopCheck stop = make_stop();
-  const json result = job(Emit{}, stop);
-  res.status = 200;
-  res.set_content(dump(result), "application/json");
+  return json_response(dump(job(Emit{}, stop)));
 }
 
-// Streams run inside the chunked provider, on the connection's own worker: each record is written as it is
-// produced, and a failed write (client gone) cancels the work at the next callback.
-void ApiHandlers::stream(httplib::Response& res, std::shared_ptr<Slot> slot, Job job, bool sse) {
+// Streams run inside the body stream, on the connection's own worker: each record is written as it is
+// produced, and a failed write (client gone) cancels the work at the next callback. The stream owns the work
+// slot, so the slot is held until the transport drops the response.
+HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) {
   slot->mark_streaming();
-  res.status = 200;
+  HttpResponse res;
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Accel-Buffering", "no");
   auto stop = std::make_shared<StopCheck>(make_stop());
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
-  const char* type = sse ? "text/event-stream" : "application/x-ndjson";
-  res.set_chunked_content_provider(type, [slot, job = std::move(job), stop, sse](std::size_t, httplib::DataSink& sink) {
+  res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
+  res.stream = [slot, job = std::move(job), stop, sse](const ChunkSink& sink) {
     auto write = [&](const char* kind, json record) {
       // "type" first, for people reading the stream; the rest keeps the result's field order.
       std::string line = dump(record);
       line = std::string("{\"type\":\"") + kind + "\"" + (line.size() > 2 ? "," : "") + line.substr(1);
       const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + line + "\n\n" : line + "\n";
-      if (!sink.write(text.data(), text.size())) {
+      if (!sink(text)) {
         stop->client_gone();
         return false;
       }
@@ -211,17 +231,16 @@ void ApiHandlers::stream(httplib::Response& res, std::shared_ptr<Slot> slot, Job
       kind = "error";
       terminal = error_body(e);
     } catch (...) {
-      // Nothing may escape a content provider: it runs outside cpp-httplib's exception handler.
+      // Nothing may escape a body stream: it runs outside the transport's exception handler.
       kind = "error";
       terminal = error_body("internal_error", "", "internal error");
     }
-    if (stop->reason() == StopReason::client_gone || !write(kind, std::move(terminal))) return false;
-    sink.done();
-    return true;
-  });
+    return stop->reason() != StopReason::client_gone && write(kind, std::move(terminal));
+  };
+  return res;
 }
 
-void ApiHandlers::render(const RouteSpec& route, const json& body, httplib::Response& res) {
+HttpResponse ApiHandlers::render(const json& body, bool frames) {
   StopCheck stop = make_stop();
   std::shared_ptr<Slot> slot;
   RenderHooks hooks;
@@ -234,23 +253,18 @@ void ApiHandlers::render(const RouteSpec& route, const json& body, httplib::Resp
   hooks.on_solve = [&](const SolveResult& r) { metrics_.solve_finished(std::string(to_string(r.status)), r.iterations); };
   std::vector<unsigned char> png;
   try {
-    const bool frames = route.id == RouteId::render_frames_post || route.id == RouteId::render_frames_get;
-    png = frames ? render_frames(body, options_.limits, *renderer_, hooks)
-                 : render_heatmap(body, options_.limits, *renderer_, hooks);
+    png = frames ? service::render_frames(body, options_.limits, *renderer_, hooks)
+                 : service::render_heatmap(body, options_.limits, *renderer_, hooks);
   } catch (const RenderCancelled&) {
     throw_stopped(stop);
   } catch (const render::RenderUnavailable&) {
     throw ApiError(503, "render_unavailable", "", "the offscreen renderer is unavailable; everything else still works");
   }
-  res.status = 200;
+  HttpResponse res;
   res.set_header("Cache-Control", "no-store");
-  res.set_content(reinterpret_cast<const char*>(png.data()), png.size(), "image/png");
-}
-
-void send_error(httplib::Response& res, int status, std::string_view code, std::string_view field,
-                std::string_view message) {
-  res.status = status;
-  res.set_content(dump(error_body(code, field, message)), "application/json");
+  res.content_type = "image/png";
+  res.body.assign(png.begin(), png.end());
+  return res;
 }
 
 }  // namespace lienewton::service

@@ -1,6 +1,7 @@
 #pragma once
-// Handlers of the long-work routes (solve, sweep, integrate, work-precision, renders): parse and validate,
-// take a work slot, then run inline (JSON, PNG) or inside a chunked provider (NDJSON, SSE).
+// The service's handlers, one per route: each turns an HttpRequest into an HttpResponse (or a record stream) and
+// never sees the transport. Long-work routes (solve, sweep, integrate, work-precision, renders) parse and
+// validate, take a work slot, then run inline (JSON, PNG) or inside the response's body stream (NDJSON, SSE).
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -8,25 +9,34 @@
 #include <vector>
 
 #include "server/cancellation.hpp"
+#include "server/http_exchange.hpp"
 #include "server/json_codec.hpp"
 #include "server/metrics.hpp"
-#include "server/routes.hpp"
 #include "server/server_options.hpp"
 
 namespace lienewton::render { class Renderer; }
-
-namespace httplib {
-struct Request;
-struct Response;
-}  // namespace httplib
 
 namespace lienewton::service {
 
 class ApiHandlers {
  public:
-  ApiHandlers(const ServerOptions& options, Metrics& metrics, const std::atomic<bool>& abort_work);
+  // draining: /readyz answers 503 while set; abort_work: cancels long work in progress.
+  ApiHandlers(const ServerOptions& options, Metrics& metrics, const std::atomic<bool>& draining,
+              const std::atomic<bool>& abort_work);
   ~ApiHandlers();
-  void handle(const RouteSpec& route, const httplib::Request& req, httplib::Response& res);
+
+  HttpResponse solve(const HttpRequest& req);
+  HttpResponse solve_events(const HttpRequest& req);
+  HttpResponse sweep(const HttpRequest& req);
+  HttpResponse integrate(const HttpRequest& req);
+  HttpResponse work_precision(const HttpRequest& req);
+  HttpResponse render_frames(const HttpRequest& req);
+  HttpResponse render_heatmap(const HttpRequest& req);
+  HttpResponse livez(const HttpRequest& req);
+  HttpResponse readyz(const HttpRequest& req);
+  HttpResponse metrics(const HttpRequest& req);
+  HttpResponse openapi(const HttpRequest& req);
+  HttpResponse static_file(const HttpRequest& req);
 
   // Writes one progress record; false when the client has gone.
   using Emit = std::function<bool(const char* type, json record)>;
@@ -39,19 +49,20 @@ class ApiHandlers {
   StopCheck make_stop() const;
   void progress(int index) const;
   [[noreturn]] void throw_stopped(const StopCheck& stop) const;
-  json body_json(const RouteSpec& route, const httplib::Request& req) const;
 
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
-  void serve(const httplib::Request& req, httplib::Response& res, Job job, bool sse);
-  void stream(httplib::Response& res, std::shared_ptr<Slot> slot, Job job, bool sse);
-  void render(const RouteSpec& route, const json& body, httplib::Response& res);
+  HttpResponse serve(const HttpRequest& req, Job job, bool sse);
+  HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse);
+  HttpResponse render(const json& body, bool frames);
 
   const ServerOptions& options_;
   Metrics& metrics_;
+  const std::atomic<bool>& draining_;
   const std::atomic<bool>& abort_work_;
+  const std::string openapi_document_;
   std::atomic<int> slots_in_use_{0};
   std::unique_ptr<render::Renderer> renderer_;
 };

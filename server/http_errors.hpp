@@ -1,10 +1,11 @@
 #pragma once
 // Error responses: always {"error":{"code","field","message"}} with a fixed status, never exception text.
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
-namespace httplib { struct Response; }
+#include "server/http_exchange.hpp"
 
 namespace lienewton::service {
 
@@ -23,7 +24,11 @@ class ApiError : public std::runtime_error {
   std::string field_;
 };
 
-void send_error(httplib::Response& res, int status, std::string_view code, std::string_view field,
-                std::string_view message);
+// A JSON error response with the given status.
+HttpResponse error_response(int status, std::string_view code, std::string_view field, std::string_view message);
+
+// The response for an exception a handler threw: ApiError (its own status; 503 adds Retry-After) or
+// RequestError (400, or 422 for a well-formed but unprocessable request). Other exceptions are rethrown.
+HttpResponse error_response(const std::exception_ptr& error);
 
 }  // namespace lienewton::service

@@ -11,7 +11,7 @@
 #include "server/http_errors.hpp"
 #include "server/request_limits.hpp"
 #include "server/routes.hpp"
-#include "server/static_files.hpp"
+#include "core/request_error.hpp"
 
 namespace lienewton::service {
 namespace {
@@ -42,6 +42,38 @@ std::string utc_now() {
   return buf;
 }
 
+// The handlers' view of a request. Pre-routing runs before the body is read, so there it has none yet.
+HttpRequest to_exchange(const httplib::Request& req) {
+  HttpRequest r;
+  r.method = req.method;
+  r.path = req.path;
+  r.params = {req.params.begin(), req.params.end()};
+  r.headers = {req.headers.begin(), req.headers.end()};
+  r.ranges.assign(req.ranges.begin(), req.ranges.end());
+  r.body = req.body;
+  return r;
+}
+
+// Writes a handler's answer into cpp-httplib's response. A status of 206 leaves the slicing of the body to
+// cpp-httplib (it applies the request's single range); a body stream becomes a chunked content provider.
+void send(HttpResponse answer, httplib::Response& res) {
+  res.status = answer.status;
+  for (auto& [name, value] : answer.headers) res.set_header(name, value);
+  if (!answer.stream) {
+    res.set_content(std::move(answer.body), answer.content_type);
+    return;
+  }
+  res.set_chunked_content_provider(answer.content_type,
+                                   [stream = std::move(answer.stream)](std::size_t, httplib::DataSink& sink) {
+                                     const ChunkSink write = [&sink](std::string_view chunk) {
+                                       return sink.write(chunk.data(), chunk.size());
+                                     };
+                                     if (!stream(write)) return false;
+                                     sink.done();
+                                     return true;
+                                   });
+}
+
 // The request is a local of cpp-httplib's process_request; asking for Connection: close makes it close the
 // socket after answering, so an unread (refused) body is never parsed as the next request.
 void close_after_response(const httplib::Request& req) {
@@ -54,8 +86,7 @@ void close_after_response(const httplib::Request& req) {
 
 HttpServer::HttpServer(ServerOptions options)
     : options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
-  web_root_ = options_.web_root;
-  api_ = std::make_unique<ApiHandlers>(options_, metrics_, abort_work_);
+  api_ = std::make_unique<ApiHandlers>(options_, metrics_, draining_, abort_work_);
   install();
 }
 
@@ -91,7 +122,7 @@ void HttpServer::install() {
     auto refuse = [&](int status, const std::string& code, const std::string& message) {
       metrics_.rejected(code);
       close_after_response(req);
-      send_error(res, status, code, "", message);
+      send(error_response(status, code, "", message), res);
       return httplib::Server::HandlerResponse::Handled;
     };
     if (!route && path_is_routed(req.path)) {
@@ -106,11 +137,10 @@ void HttpServer::install() {
       return refuse(404, "not_found", "no such route: " + req.method + " " + req.path);
     }
     const BodyKind kind = route ? route->body : BodyKind::none;
-    if (auto rejection = check_body_rules(req, kind, options_.max_body)) {
+    if (auto rejection = check_body_rules(to_exchange(req), kind, options_.max_body)) {
       return refuse(rejection->status, rejection->code, rejection->message);
     }
-    const bool health = route && (route->id == RouteId::livez || route->id == RouteId::readyz || route->id == RouteId::metrics);
-    if (draining_.load() && !health) {
+    if (draining_.load() && !(route && route->serves_while_draining)) {
       res.set_header("Retry-After", "1");
       return refuse(503, "shutting_down", "the server is shutting down");
     }
@@ -118,47 +148,18 @@ void HttpServer::install() {
   });
 
   for (const auto& route : route_table()) {
-    httplib::Server::Handler handler;
-    switch (route.id) {
-      case RouteId::livez:
-        handler = [](const httplib::Request&, httplib::Response& res) {
-          res.set_content(R"({"status":"ok"})", "application/json");
-        };
-        break;
-      case RouteId::readyz:
-        handler = [this](const httplib::Request&, httplib::Response& res) {
-          if (draining_.load()) {
-            res.status = 503;
-            res.set_content(R"({"status":"draining"})", "application/json");
-          } else {
-            res.set_content(R"({"status":"ok"})", "application/json");
-          }
-        };
-        break;
-      case RouteId::metrics:
-        handler = [this](const httplib::Request&, httplib::Response& res) {
-          res.set_content(metrics_.render(), "text/plain; version=0.0.4");
-        };
-        break;
-      case RouteId::openapi:
-        handler = [doc = openapi_document()](const httplib::Request&, httplib::Response& res) {
-          res.set_content(doc, "application/json");
-        };
-        break;
-      case RouteId::index:
-        handler = [this](const httplib::Request& req, httplib::Response& res) { serve_static(web_root_, req, res); };
-        break;
-      default:
-        handler = [this, &route](const httplib::Request& req, httplib::Response& res) { api_->handle(route, req, res); };
-        break;
-    }
+    auto handler = [this, answer = route.handler](const httplib::Request& req, httplib::Response& res) {
+      send(respond(answer, req), res);
+    };
     const std::string pattern = regex_escape(route.path);
     if (route.method == "GET") svr.Get(pattern, handler);
     else svr.Post(pattern, handler);
     registered_.emplace_back(route.method, route.path);
   }
   // Everything else under / is a static file (or a JSON 404).
-  svr.Get("/.*", [this](const httplib::Request& req, httplib::Response& res) { serve_static(web_root_, req, res); });
+  svr.Get("/.*", [this](const httplib::Request& req, httplib::Response& res) {
+    send(respond(&ApiHandlers::static_file, req), res);
+  });
 
   // Runs for every status >= 400: fill in a JSON body where no handler wrote one (404, 400 from the parser).
   svr.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
@@ -173,14 +174,14 @@ void HttpServer::install() {
       case 416: code = "range_not_satisfiable"; message = "the Range header cannot be satisfied"; break;
       default: break;
     }
-    send_error(res, res.status, code, "", message);
+    send(error_response(res.status, code, "", message), res);
     return httplib::Server::HandlerResponse::Handled;
   }));
 
   // Without this cpp-httplib 0.11.4 puts the exception text into a response header (CVE-2026-28434).
   svr.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
     res.headers.erase("Content-Type");
-    send_error(res, 500, "internal_error", "", "internal error");
+    send(error_response(500, "internal_error", "", "internal error"), res);
   });
 
   svr.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
@@ -197,6 +198,18 @@ void HttpServer::install() {
       *options_.log << dump(line) + "\n" << std::flush;
     }
   });
+}
+
+// Handler exceptions that name an HTTP refusal become error responses; anything else reaches the exception
+// handler above (500).
+HttpResponse HttpServer::respond(RouteHandler handler, const httplib::Request& req) {
+  try {
+    return ((*api_).*handler)(to_exchange(req));
+  } catch (const ApiError&) {
+    return error_response(std::current_exception());
+  } catch (const RequestError&) {
+    return error_response(std::current_exception());
+  }
 }
 
 int HttpServer::bind() {
@@ -237,6 +250,20 @@ void HttpServer::drain_and_stop(double limit_seconds) {
 void HttpServer::stop() {
   if (server_ && server_->is_running()) server_->stop();
   if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+}
+
+}  // namespace lienewton::service
+
+namespace lienewton::service {
+
+int healthcheck(const ServerOptions& options) {
+  // 0.0.0.0 / :: are listen addresses, not destinations.
+  const std::string host = options.host == "0.0.0.0" ? "127.0.0.1" : options.host == "::" ? "::1" : options.host;
+  httplib::Client client(host, options.port);
+  client.set_connection_timeout(2, 0);
+  client.set_read_timeout(2, 0);
+  auto res = client.Get("/livez");
+  return res && res->status == 200 ? 0 : 1;
 }
 
 }  // namespace lienewton::service

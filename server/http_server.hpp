@@ -9,10 +9,15 @@
 #include <utility>
 #include <vector>
 
+#include "server/http_exchange.hpp"
 #include "server/metrics.hpp"
+#include "server/routes.hpp"
 #include "server/server_options.hpp"
 
-namespace httplib { class Server; }
+namespace httplib {
+class Server;
+struct Request;
+}  // namespace httplib
 
 namespace lienewton::service {
 
@@ -45,9 +50,9 @@ class HttpServer {
 
  private:
   void install();
+  HttpResponse respond(RouteHandler handler, const httplib::Request& req);
 
   ServerOptions options_;
-  std::string web_root_;
   Metrics metrics_;
   std::atomic<bool> draining_{false};
   std::atomic<bool> abort_work_{false};
@@ -57,5 +62,8 @@ class HttpServer {
   std::thread thread_;
   int port_ = -1;
 };
+
+// The --healthcheck probe: 0 when a server at options.host:port answers /livez with 200, else 1.
+int healthcheck(const ServerOptions& options);
 
 }  // namespace lienewton::service

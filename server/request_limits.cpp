@@ -1,7 +1,5 @@
 #include "server/request_limits.hpp"
 
-#include "server/httplib_include.hpp"
-
 #include <cctype>
 #include <random>
 
@@ -23,7 +21,7 @@ std::string media_type(const std::string& content_type) {
 
 }  // namespace
 
-std::optional<Rejection> check_body_rules(const httplib::Request& req, BodyKind kind, std::size_t max_body) {
+std::optional<Rejection> check_body_rules(const HttpRequest& req, BodyKind kind, std::size_t max_body) {
   if (req.has_header("Transfer-Encoding")) {
     return Rejection{411, "length_required", "request bodies must be sent with Content-Length, not Transfer-Encoding"};
   }
@@ -33,10 +31,10 @@ std::optional<Rejection> check_body_rules(const httplib::Request& req, BodyKind 
   const bool has_length = req.has_header("Content-Length");
   std::size_t length = 0;
   if (has_length) {
-    if (req.get_header_value_count("Content-Length") != 1) {
+    if (req.header_count("Content-Length") != 1) {
       return Rejection{400, "invalid_content_length", "Content-Length must be given once"};
     }
-    const std::string text = req.get_header_value("Content-Length");
+    const std::string text = req.header("Content-Length");
     if (text.empty() || text.size() > 19) return Rejection{400, "invalid_content_length", "Content-Length is not a number"};
     for (char c : text) {
       if (c < '0' || c > '9') return Rejection{400, "invalid_content_length", "Content-Length is not a number"};
@@ -50,7 +48,7 @@ std::optional<Rejection> check_body_rules(const httplib::Request& req, BodyKind 
   if (kind == BodyKind::json) {
     if (!has_length) return Rejection{411, "length_required", "POST requests need a Content-Length header"};
     // curl -d sends application/x-www-form-urlencoded; the body is still parsed as JSON.
-    const std::string type = media_type(req.get_header_value("Content-Type"));
+    const std::string type = media_type(req.header("Content-Type"));
     if (!type.empty() && type != "application/json" && type != "application/x-www-form-urlencoded") {
       return Rejection{415, "unsupported_media_type", "the request body must be application/json"};
     }

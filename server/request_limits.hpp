@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace httplib { struct Request; }
+#include "server/http_exchange.hpp"
 
 namespace lienewton::service {
 
@@ -20,7 +20,7 @@ struct Rejection {
 // kind: what the matched route accepts.
 enum class BodyKind { none, json };
 
-std::optional<Rejection> check_body_rules(const httplib::Request& request, BodyKind kind, std::size_t max_body);
+std::optional<Rejection> check_body_rules(const HttpRequest& request, BodyKind kind, std::size_t max_body);
 
 // Accepts ^[A-Za-z0-9._-]{1,64}$ only, so the id can be echoed and logged verbatim.
 bool valid_request_id(std::string_view id);

@@ -1,5 +1,7 @@
 #include "server/routes.hpp"
 
+#include "server/api_handlers.hpp"
+
 namespace lienewton::service {
 namespace {
 
@@ -9,43 +11,43 @@ const std::vector<int> kGetWorkErrors{400, 422, 503, 504};
 std::vector<RouteSpec> build_table() {
   const std::string ndjson = "application/x-ndjson";
   std::vector<RouteSpec> t{
-      {RouteId::solve, "POST", "/api/v1/solve",
+      {&ApiHandlers::solve, "POST", "/api/v1/solve",
        "Solve y = z exp(h g(y)); streams NDJSON trace records with Accept: application/x-ndjson", BodyKind::json,
        true, "SolveRequest", {"application/json", ndjson}, "SolveResult", kJsonPostErrors},
-      {RouteId::solve_events, "GET", "/api/v1/solve/events",
+      {&ApiHandlers::solve_events, "GET", "/api/v1/solve/events",
        "The solve stream as Server-Sent Events (query parameters mirror SolveRequest)", BodyKind::none, true,
        "SolveRequest", {"text/event-stream"}, "SolveStreamRecord", kGetWorkErrors},
-      {RouteId::sweep, "POST", "/api/v1/sweep",
+      {&ApiHandlers::sweep, "POST", "/api/v1/sweep",
        "Stability map over (method, n, h); NDJSON streams one cell record per finished cell", BodyKind::json, true,
        "SweepRequest", {"application/json", ndjson}, "SweepResult", kJsonPostErrors},
-      {RouteId::integrate, "POST", "/api/v1/integrate",
+      {&ApiHandlers::integrate, "POST", "/api/v1/integrate",
        "Time stepping with an implicit Lie group integrator; NDJSON streams one step record per step",
        BodyKind::json, true, "IntegrateRequest", {"application/json", ndjson}, "IntegrateResult", kJsonPostErrors},
-      {RouteId::work_precision, "POST", "/api/v1/work-precision",
+      {&ApiHandlers::work_precision, "POST", "/api/v1/work-precision",
        "CPU time vs global error per (integrator, method, differential); NDJSON streams one series record each",
        BodyKind::json, true, "WorkPrecisionRequest", {"application/json", ndjson}, "WorkPrecisionResult",
        kJsonPostErrors},
-      {RouteId::render_frames_post, "POST", "/api/v1/render/frames",
+      {&ApiHandlers::render_frames, "POST", "/api/v1/render/frames",
        "PNG of the rotation frames of an SO(3) solve (iterates) or integration (trajectory)", BodyKind::json, true,
        "RenderFramesRequest", {"image/png"}, "", kJsonPostErrors},
-      {RouteId::render_frames_get, "GET", "/api/v1/render/frames",
+      {&ApiHandlers::render_frames, "GET", "/api/v1/render/frames",
        "GET form of render/frames for <img src> (query parameters mirror RenderFramesRequest)", BodyKind::none, true,
        "RenderFramesRequest", {"image/png"}, "", kGetWorkErrors},
-      {RouteId::render_heatmap_post, "POST", "/api/v1/render/heatmap",
+      {&ApiHandlers::render_heatmap, "POST", "/api/v1/render/heatmap",
        "PNG heatmap of a sweep (a sweep request, or {\"sweep\": <sweep result>})", BodyKind::json, true,
        "RenderHeatmapRequest", {"image/png"}, "", kJsonPostErrors},
-      {RouteId::render_heatmap_get, "GET", "/api/v1/render/heatmap",
+      {&ApiHandlers::render_heatmap, "GET", "/api/v1/render/heatmap",
        "GET form of render/heatmap for <img src> (query parameters mirror the sweep request)", BodyKind::none, true,
        "RenderHeatmapRequest", {"image/png"}, "", kGetWorkErrors},
-      {RouteId::livez, "GET", "/livez", "Liveness: answers while the process serves requests", BodyKind::none, false,
-       "", {"application/json"}, "Health", {}},
-      {RouteId::readyz, "GET", "/readyz", "Readiness: 503 while draining for shutdown", BodyKind::none, false, "",
-       {"application/json"}, "Health", {503}},
-      {RouteId::metrics, "GET", "/metrics", "Prometheus metrics (text exposition format 0.0.4)", BodyKind::none,
-       false, "", {"text/plain"}, "", {}},
-      {RouteId::openapi, "GET", "/openapi.json", "This document", BodyKind::none, false, "", {"application/json"}, "",
+      {&ApiHandlers::livez, "GET", "/livez", "Liveness: answers while the process serves requests", BodyKind::none, false,
+       "", {"application/json"}, "Health", {}, true},
+      {&ApiHandlers::readyz, "GET", "/readyz", "Readiness: 503 while draining for shutdown", BodyKind::none, false, "",
+       {"application/json"}, "Health", {503}, true},
+      {&ApiHandlers::metrics, "GET", "/metrics", "Prometheus metrics (text exposition format 0.0.4)", BodyKind::none,
+       false, "", {"text/plain"}, "", {}, true},
+      {&ApiHandlers::openapi, "GET", "/openapi.json", "This document", BodyKind::none, false, "", {"application/json"}, "",
        {}},
-      {RouteId::index, "GET", "/", "The dashboard (static files from the web root are served below /)",
+      {&ApiHandlers::static_file, "GET", "/", "The dashboard (static files from the web root are served below /)",
        BodyKind::none, false, "", {"text/html"}, "", {404}},
   };
   return t;

@@ -1,32 +1,20 @@
 #pragma once
-// The one route table: the server registers its handlers from it and the OpenAPI document is generated from
+// The one route table: each row holds its handler; the server registers the handlers from it and the OpenAPI document is generated from
 // it, so the two cannot disagree.
 #include <string>
 #include <vector>
 
+#include "server/http_exchange.hpp"
 #include "server/request_limits.hpp"
 
 namespace lienewton::service {
 
-enum class RouteId {
-  solve,
-  solve_events,
-  sweep,
-  integrate,
-  work_precision,
-  render_frames_post,
-  render_frames_get,
-  render_heatmap_post,
-  render_heatmap_get,
-  livez,
-  readyz,
-  metrics,
-  openapi,
-  index,
-};
+class ApiHandlers;
+// A route's handler: a member of ApiHandlers from request value to response value.
+using RouteHandler = HttpResponse (ApiHandlers::*)(const HttpRequest&);
 
 struct RouteSpec {
-  RouteId id;
+  RouteHandler handler;
   std::string method;  // "GET" or "POST"
   std::string path;    // exact path
   std::string summary;
@@ -36,6 +24,7 @@ struct RouteSpec {
   std::vector<std::string> success_types;  // media types of the 200 response
   std::string result_schema;               // schema of the application/json (or first) success type
   std::vector<int> errors;                 // documented error statuses
+  bool serves_while_draining = false;      // health and metrics keep answering during a shutdown drain
 };
 
 // Every route this build serves (render routes only when the renderer is built in).

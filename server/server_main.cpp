@@ -1,7 +1,5 @@
 // lienewton-server: flags/env -> HttpServer; SIGTERM/SIGINT are blocked in every thread and taken by sigwait
-// in a dedicated thread, because httplib::Server::stop() is not async-signal-safe.
-#include "server/httplib_include.hpp"
-
+// in a dedicated thread, because stopping the HTTP server is not async-signal-safe.
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -12,20 +10,6 @@
 
 #include "server/http_server.hpp"
 #include "server/server_options.hpp"
-
-namespace {
-
-int healthcheck(const lienewton::service::ServerOptions& options) {
-  // 0.0.0.0 / :: are listen addresses, not destinations.
-  const std::string host = options.host == "0.0.0.0" ? "127.0.0.1" : options.host == "::" ? "::1" : options.host;
-  httplib::Client client(host, options.port);
-  client.set_connection_timeout(2, 0);
-  client.set_read_timeout(2, 0);
-  auto res = client.Get("/livez");
-  return res && res->status == 200 ? 0 : 1;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lienewton::service;

@@ -1,7 +1,5 @@
 #include "server/static_files.hpp"
 
-#include "server/httplib_include.hpp"
-
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -68,36 +66,32 @@ std::string resolve_static_path(const std::string& web_root, const std::string& 
   return real.string();
 }
 
-void serve_static(const std::string& web_root, const httplib::Request& req, httplib::Response& res) {
+HttpResponse serve_static(const std::string& web_root, const HttpRequest& req) {
   namespace fs = std::filesystem;
   const std::string file = resolve_static_path(web_root, req.path);
   std::error_code ec;
   const auto size = file.empty() ? 0 : fs::file_size(file, ec);
-  if (file.empty() || ec || size > kMaxFileSize) {
-    send_error(res, 404, "not_found", "", "no such route or file: " + req.path);
-    return;
-  }
+  if (file.empty() || ec || size > kMaxFileSize) return error_response(404, "not_found", "", "no such route or file: " + req.path);
   std::ifstream in(file, std::ios::binary);
   std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) {
-    send_error(res, 404, "not_found", "", "no such route or file: " + req.path);
-    return;
-  }
+  if (!in.good() && !in.eof()) return error_response(404, "not_found", "", "no such route or file: " + req.path);
+  HttpResponse res;
   if (req.ranges.size() == 1) {
-    // cpp-httplib slices a single range itself (206); an unsatisfiable one is answered here.
+    // The transport slices a 206 body to the single range; an unsatisfiable range is answered here.
     const auto [first, last] = req.ranges[0];
-    const auto n = static_cast<ssize_t>(body.size());
+    const auto n = static_cast<long long>(body.size());
     const bool ok = first < 0 ? last > 0 : (first < n && (last < 0 || last >= first));
     if (!ok) {
+      res = error_response(416, "range_not_satisfiable", "", "the requested byte range is outside the file");
       res.set_header("Content-Range", "bytes */" + std::to_string(body.size()));
-      send_error(res, 416, "range_not_satisfiable", "", "the requested byte range is outside the file");
-      return;
+      return res;
     }
-  } else {
-    res.status = 200;
+    res.status = 206;
   }
   res.set_header("Cache-Control", "no-cache");
-  res.set_content(body, content_type(file));
+  res.content_type = content_type(file);
+  res.body = std::move(body);
+  return res;
 }
 
 }  // namespace lienewton::service

@@ -2,19 +2,17 @@
 
 #include <gtest/gtest.h>
 
-#include "server/httplib_include.hpp"
-
 namespace lienewton::service {
 namespace {
 
-httplib::Request request(std::initializer_list<std::pair<const char*, const char*>> headers) {
-  httplib::Request r;
+HttpRequest request(std::initializer_list<std::pair<const char*, const char*>> headers) {
+  HttpRequest r;
   r.method = "POST";
   for (const auto& [k, v] : headers) r.headers.emplace(k, v);
   return r;
 }
 
-int status_of(const httplib::Request& r, BodyKind kind = BodyKind::json, std::size_t max_body = 100) {
+int status_of(const HttpRequest& r, BodyKind kind = BodyKind::json, std::size_t max_body = 100) {
   auto rejection = check_body_rules(r, kind, max_body);
   return rejection ? rejection->status : 0;
 }

@@ -1,4 +1,4 @@
-#include "paper_figures.hpp"
+#include "server/cli/paper_figures.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -11,7 +11,7 @@
 #include "render/renderer.hpp"
 #include "server/http_errors.hpp"
 #include "server/json_codec.hpp"
-#include "server/paper_figures.hpp"
+#include "server/cli/paper_figures.hpp"
 #include "server/render_requests.hpp"
 
 namespace {

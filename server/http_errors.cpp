@@ -1,0 +1,28 @@
+#include "server/http_errors.hpp"
+
+#include "server/json_codec.hpp"
+
+namespace lienewton::service {
+
+HttpResponse error_response(int status, std::string_view code, std::string_view field, std::string_view message) {
+  HttpResponse res;
+  res.status = status;
+  res.content_type = "application/json";
+  res.body = dump(error_body(code, field, message));
+  return res;
+}
+
+HttpResponse error_response(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const ApiError& e) {
+    HttpResponse res = error_response(e.status(), e.code(), e.field(), e.what());
+    if (e.status() == 503) res.set_header("Retry-After", "1");
+    return res;
+  } catch (const RequestError& e) {
+    const int status = e.kind() == RequestError::Kind::unprocessable ? 422 : 400;
+    return error_response(status, error_code(e), e.field(), e.what());
+  }
+}
+
+}  // namespace lienewton::service
