@@ -16,6 +16,8 @@ struct FramesOptions {
 };
 
 enum class HeatmapMetric { iterations, rate, residual };
+inline constexpr HeatmapMetric kAllHeatmapMetrics[] = {HeatmapMetric::iterations, HeatmapMetric::rate,
+                                                       HeatmapMetric::residual};
 std::optional<HeatmapMetric> heatmap_metric_from_string(std::string_view name);  // "iterations"|"rate"|"residual"
 std::string_view to_string(HeatmapMetric metric);
 

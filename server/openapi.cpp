@@ -5,6 +5,7 @@
 #include "core/options.hpp"
 #include "core/status.hpp"
 #include "core/validation.hpp"
+#include "server/openapi_labels.hpp"
 #include "server/routes.hpp"
 
 namespace lienewton::service {
@@ -214,7 +215,8 @@ std::string openapi_document() {
                                      "implicit integrators, work-precision data and renders. Errors are "
                                      "{\"error\":{\"code\",\"field\",\"message\"}}."}}},
            {"paths", paths},
-           {"components", {{"schemas", all}}}};
+           {"components", {{"schemas", all}}},
+           {"x-lienewton", openapi_labels()}};
   return doc.dump(1, ' ', false, json::error_handler_t::replace);
 }
 

@@ -1,9 +1,9 @@
 // Entry point: builds the four panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
 // Home/End) and the URL hash, so a panel can be linked to and survives a reload.
-import { createComparePanel } from './compare.js';
-import { createSolvePanel } from './solve.js';
-import { createSpeedPanel } from './speed.js';
-import { createStabilityPanel } from './stability.js';
+import { createComparePanel } from './panels/compare.js';
+import { createSolvePanel } from './panels/solve.js';
+import { createSpeedPanel } from './panels/speed.js';
+import { createStabilityPanel } from './panels/stability.js';
 
 const tabs = [...document.querySelectorAll('[role="tab"]')];
 

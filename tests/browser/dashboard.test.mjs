@@ -52,6 +52,17 @@ function near(shown, expected, abs, rel) {
   assert.ok(Math.abs(Number(shown) - expected) <= abs + rel * Math.abs(expected), `${shown} vs ${expected}`);
 }
 
+// Every panel's visible text, tab by tab, free of the marks of a missing label or value.
+async function everyPanelReadsWell() {
+  const broken = /.{0,40}(undefined|\[object Object\]).{0,40}/;
+  for (const name of ['Solve', 'Compare', 'Stability map', 'Speed vs accuracy']) {
+    await tab(name);
+    const hit = (await page.locator('main').innerText()).match(broken);
+    assert.equal(hit, null, `${name} panel shows: ${hit?.[0]}`);
+  }
+  await tab('Solve');
+}
+
 test('vendored uPlot matches the pinned npm package', () => {
   assert.deepEqual(staleVendored(), [], 'run `npm run vendor`');
 });
@@ -67,6 +78,13 @@ test('page loads with no console errors and nothing fetched from outside', async
   assert.equal(await page.getByRole('tab', { name: 'Compare' }).getAttribute('aria-selected'), 'true');
   assert.equal(await page.locator('#compare').isVisible(), true);
   await tab('Solve');
+});
+
+test('labels and colours come from the server catalog; no panel shows "undefined"', async () => {
+  const catalog = (await (await fetch(base + '/openapi.json')).json())['x-lienewton'];
+  const methods = await page.locator('#solve').getByLabel('Method').locator('option').allInnerTexts();
+  assert.deepEqual(methods, catalog.enums.method.map((m) => m.label));
+  await everyPanelReadsWell();
 });
 
 test('a solve streams its trace; the chart ends with iterations + 1 points', async () => {
@@ -186,6 +204,8 @@ test('the work-precision chart has one series per ticked choice', async () => {
   assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));
   await shot('speed');
 });
+
+test('after every panel has run, none shows "undefined"', everyPanelReadsWell);
 
 test('on a touch phone a first tap shows a cell, a second tap opens it', async () => {
   const phone = await browser.newPage({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });

@@ -3,6 +3,8 @@
 
 #include <set>
 
+#include "core/status.hpp"
+#include "render/colormap.hpp"
 #include "server/json_codec.hpp"
 #include "server/routes.hpp"
 #include "test_server.hpp"
@@ -62,6 +64,56 @@ TEST(OpenApi, RequestSchemasListTheCodecFields) {
   const json& sweep = doc["components"]["schemas"]["SweepRequest"]["properties"];
   for (const char* f : {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations"}) {
     EXPECT_TRUE(sweep.contains(f)) << f;
+  }
+}
+
+std::string css(render::Color c) {
+  return "rgb(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")";
+}
+
+// The dashboard reads its words and colours from "x-lienewton": every value the API accepts or answers has a
+// label, a short label and a description, every status a colour, and the colours are the renderer's.
+TEST(OpenApi, ExtensionLabelsEveryEnumValue) {
+  const json doc = json::parse(openapi_document());
+  const json& schemas = doc["components"]["schemas"];
+  const json& ext = doc["x-lienewton"];
+  const std::pair<const char*, json> published[] = {
+      {"problem", schemas["SolveRequest"]["properties"]["problem"]["enum"]},
+      {"method", schemas["SolveRequest"]["properties"]["method"]["enum"]},
+      {"differential", schemas["SolveRequest"]["properties"]["differential"]["enum"]},
+      {"linear_solver", schemas["SolveRequest"]["properties"]["linear_solver"]["enum"]},
+      {"integrator", schemas["IntegrateRequest"]["properties"]["integrator"]["enum"]},
+      {"status", schemas["SolveResult"]["properties"]["status"]["enum"]},
+      {"heatmap_metric", schemas["RenderHeatmapRequest"]["properties"]["metric"]["enum"]},
+  };
+  for (const auto& [name, values] : published) {
+    ASSERT_TRUE(values.is_array() && !values.empty()) << name;
+    const json& entries = ext["enums"][name];
+    ASSERT_EQ(entries.size(), values.size()) << name;
+    std::set<std::string> labels;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      EXPECT_EQ(entries[i]["value"], values[i]) << name;  // same values, same order as the schema
+      for (const char* key : {"label", "short", "description"}) {
+        EXPECT_FALSE(entries[i].value(key, std::string()).empty()) << name << " " << values[i] << " " << key;
+      }
+      EXPECT_TRUE(labels.insert(entries[i]["label"].get<std::string>()).second) << name << ": label used twice";
+    }
+  }
+  for (const auto& entry : ext["enums"]["method"]) {
+    EXPECT_EQ(entry["uses_differential"], entry["value"] != "fixed-point") << entry["value"];
+  }
+  for (const auto& entry : ext["enums"]["status"]) {
+    const auto status = status_from_string(entry["value"].get<std::string>());
+    ASSERT_TRUE(status) << entry["value"];
+    if (*status != Status::converged) EXPECT_EQ(entry["color"], css(render::status_color(*status))) << entry["value"];
+    else EXPECT_EQ(entry["color"], "rgb(27,120,55)");
+  }
+  EXPECT_EQ(ext["colors"]["no_value"], css(render::kNoValueColor));
+  const json& stops = ext["colors"]["viridis"];
+  ASSERT_EQ(stops.size(), 256u);
+  for (std::size_t i : {std::size_t{0}, std::size_t{100}, std::size_t{255}}) {
+    const render::Color c = render::viridis(static_cast<double>(i) / 255.0);
+    EXPECT_EQ(stops[i], json::array({c.r, c.g, c.b})) << i;
   }
 }
 

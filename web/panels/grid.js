@@ -1,9 +1,9 @@
 // An interactive stability map for one method: a CSS grid of cells (x = log2 h ascending, y = N with the
 // largest at the top) coloured from the sweep JSON. It is keyboard navigable as an ARIA grid with a single
 // tab stop: arrows move, Enter opens the cell in the Solve panel; hover or focus shows the numbers.
-import { cellColor } from './colormap.js';
-import { el } from './dom.js';
-import { METHODS, STATUSES, label } from './labels.js';
+import { cellColor } from '../shared/colormap.js';
+import { el } from '../shared/dom.js';
+import { METHODS, STATUSES, label } from '../shared/labels.js';
 
 export function createGrid({ method, ns, hs, onShow, onOpen }) {
   const cells = new Map(); // `${n}|${hIndex}` -> element

@@ -1,25 +1,25 @@
 // Speed vs accuracy panel: a work-precision chart (log CPU time against log global error), one series per
 // ticked integrator/method/differential, and for the rigid body the energy over time of each choice.
-import { ApiError, postJSON } from './api.js';
-import { energyChart, workPrecisionChart } from './chart.js';
-import { el } from './dom.js';
-import { actions, choiceMatrix, number, range, select } from './fields.js';
-import { checkedValues, runner, value } from './form.js';
-import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, METHODS, PROBLEMS, fmtExp, fmtSeconds, label } from './labels.js';
-import { statusBadge } from './summary.js';
+import { ApiError, postJSON } from '../shared/api.js';
+import { energyChart, workPrecisionChart } from '../shared/chart.js';
+import { el } from '../shared/dom.js';
+import { actions, choiceMatrix, number, range, select } from '../shared/fields.js';
+import { checkedValues, runner, value } from '../shared/form.js';
+import { entries, entry } from '../shared/catalog.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
+import { statusBadge } from '../shared/summary.js';
 
-const SHORT = { 'fixed-point': 'fixed point', 'newton-group': 'Newton group', 'newton-algebra': 'Newton algebra' };
 const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixed-point|exact',
   'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
 
 function choiceLabel({ integrator, method, differential }) {
-  const d = method === 'fixed-point' ? '' : ` \u00b7 ${label(DIFFERENTIALS, differential)}`;
-  return `${label(INTEGRATORS, integrator)} \u00b7 ${SHORT[method]}${d}`;
+  const m = entry('method', method);
+  const d = m.uses_differential ? ` \u00b7 ${label(DIFFERENTIALS, differential)}` : '';
+  return `${label(INTEGRATORS, integrator)} \u00b7 ${m.short}${d}`;
 }
 
-const SHORT_INTEGRATOR = { 'implicit-euler': 'Euler', 'dirk-cg2': 'DIRK-CG2' };
-const ROWS = INTEGRATORS.flatMap(([i]) => METHODS.map(([m]) => ({ key: `${i}|${m}`,
-  text: `${SHORT_INTEGRATOR[i]}, ${SHORT[m]}`, single: m === 'fixed-point' })));
+const ROWS = entries('integrator').flatMap((i) => entries('method').map((m) => ({ key: `${i.value}|${m.value}`,
+  text: `${i.short}, ${m.short}`, single: !m.uses_differential })));
 
 function describe(row, differential) {
   const [integrator, method] = row.split('|');

@@ -1,7 +1,7 @@
 // Thin wrappers around uPlot (vendored in vendor/, see vendor/README.md). Each chart follows its
 // container's width, and records how many points and series it draws in data-points / data-series so
 // that the browser tests check what is actually plotted.
-import uPlot from './vendor/uPlot.esm.js';
+import uPlot from '../vendor/uPlot.esm.js';
 import { SERIES_COLORS, fmtExp, fmtSeconds } from './labels.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.

@@ -1,13 +1,13 @@
 // Solve panel: one solve, streamed iteration by iteration into a log-residual chart, then the result,
 // the rotation frames of the iterates (N = 3) and the full trace as a table.
-import { postImage, stream } from './api.js';
-import { residualChart } from './chart.js';
-import { el } from './dom.js';
-import { actions, select } from './fields.js';
-import { runner, value } from './form.js';
-import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from './labels.js';
-import { DEFAULTS, fill, limitFields, problemFields, readCommon } from './request.js';
-import { resultList } from './summary.js';
+import { postImage, stream } from '../shared/api.js';
+import { residualChart } from '../shared/chart.js';
+import { el } from '../shared/dom.js';
+import { actions, select } from '../shared/fields.js';
+import { runner, value } from '../shared/form.js';
+import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from '../shared/labels.js';
+import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
+import { resultList } from '../shared/summary.js';
 
 export function createSolvePanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Solve request' },

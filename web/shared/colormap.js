@@ -1,26 +1,19 @@
 // The heatmap colours, the same as the server's renderer (render/colormap.cpp, heatmap_scene.cpp) so that
 // the interactive grid and the PNG read alike: viridis for a converged cell's metric, one flat colour per
-// failure class, grey where a converged cell has no value for the metric (e.g. no rate).
-export const NO_VALUE = 'rgb(200,200,200)';
+// failure class, grey where a converged cell has no value for the metric (e.g. no rate). All of them come
+// from the server's catalog.
+import { catalog } from './catalog.js';
 
-// Degree-6 polynomial fit of matplotlib's viridis, the same coefficients as the renderer.
-const VIRIDIS = [
-  [0.2777273272234177, 0.005407344544966578, 0.3340998053353061],
-  [0.1050930431085774, 1.404613529898575, 1.384590162594685],
-  [-0.3308618287255563, 0.214847559468213, 0.09509516302823659],
-  [-4.634230498983486, -5.799100973351585, -19.33244095627987],
-  [6.228269936347081, 14.17993336680509, 56.69055260068105],
-  [4.776384997670288, -13.74514537774601, -65.35303263337234],
-  [-5.435455855934631, 4.645852612178535, 26.3124352495832],
-];
+export const NO_VALUE = catalog.colors.no_value;
+
+// The renderer's viridis sampled at 256 evenly spaced t; linear interpolation in between.
+const STOPS = catalog.colors.viridis;
 
 export function viridis(t) {
-  const x = Number.isNaN(t) ? 0 : Math.min(1, Math.max(0, t));
-  const rgb = [0, 1, 2].map((k) => {
-    let v = VIRIDIS[6][k];
-    for (let i = 5; i >= 0; i -= 1) v = v * x + VIRIDIS[i][k];
-    return Math.round(Math.min(1, Math.max(0, v)) * 255);
-  });
+  const x = (Number.isNaN(t) ? 0 : Math.min(1, Math.max(0, t))) * (STOPS.length - 1);
+  const i = Math.min(Math.floor(x), STOPS.length - 2);
+  const f = x - i;
+  const rgb = [0, 1, 2].map((k) => Math.round(STOPS[i][k] + f * (STOPS[i + 1][k] - STOPS[i][k])));
   return `rgb(${rgb.join(',')})`;
 }
 

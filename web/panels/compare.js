@@ -1,20 +1,21 @@
 // Compare panel: one problem solved by several method/differential pairs, one after the other (the server
 // caps concurrent streams), with every residual curve on one chart and a results table.
-import { ApiError, stream } from './api.js';
-import { residualChart } from './chart.js';
-import { el } from './dom.js';
-import { actions, choiceMatrix } from './fields.js';
-import { checkedValues, runner } from './form.js';
-import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label } from './labels.js';
-import { limitFields, problemFields, readCommon } from './request.js';
-import { statusBadge } from './summary.js';
+import { ApiError, stream } from '../shared/api.js';
+import { residualChart } from '../shared/chart.js';
+import { el } from '../shared/dom.js';
+import { actions, choiceMatrix } from '../shared/fields.js';
+import { checkedValues, runner } from '../shared/form.js';
+import { entries, entry } from '../shared/catalog.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label } from '../shared/labels.js';
+import { limitFields, problemFields, readCommon } from '../shared/request.js';
+import { statusBadge } from '../shared/summary.js';
 
-const ROWS = [{ key: 'fixed-point', text: 'Fixed point', single: true },
-  { key: 'newton-group', text: 'Newton group' }, { key: 'newton-algebra', text: 'Newton algebra' }];
+// One row per method; a method that forms no differential gets a single tick.
+const ROWS = entries('method').map((m) => ({ key: m.value, text: m.short, single: !m.uses_differential }));
 
 function runLabel(method, differential) {
-  const row = ROWS.find((r) => r.key === method);
-  return row.single ? row.text : `${row.text} \u00b7 ${label(DIFFERENTIALS, differential)}`;
+  const m = entry('method', method);
+  return m.uses_differential ? `${m.short} \u00b7 ${label(DIFFERENTIALS, differential)}` : m.short;
 }
 
 export function createComparePanel(root) {

@@ -1,14 +1,14 @@
 // Stability map panel: a sweep over (method, N, h) streamed cell by cell into one interactive grid per
 // method, then the server-rendered heatmap PNG. Hover or focus a cell for its numbers; click or Enter
 // opens that solve in the Solve panel.
-import { ApiError, postImage, stream } from './api.js';
-import { el } from './dom.js';
-import { actions, checkboxes, number, range, select } from './fields.js';
-import { checkedValues, runner, value } from './form.js';
-import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from './labels.js';
-import { NO_VALUE, metricScale, metricValue, rampCss } from './colormap.js';
+import { ApiError, postImage, stream } from '../shared/api.js';
+import { el } from '../shared/dom.js';
+import { actions, checkboxes, number, range, select } from '../shared/fields.js';
+import { checkedValues, runner, value } from '../shared/form.js';
+import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from '../shared/labels.js';
+import { NO_VALUE, metricScale, metricValue, rampCss } from '../shared/colormap.js';
 import { createGrid } from './grid.js';
-import { statusBadge } from './summary.js';
+import { statusBadge } from '../shared/summary.js';
 
 const METHOD_ORDER = METHODS.map(([m]) => m);
 

@@ -1,0 +1,48 @@
+// Names and colours shared by every panel: API values -> words a reader understands (from the server's
+// catalog), plus number formats.
+import { choices, entries } from './catalog.js';
+
+export const PROBLEMS = choices('problem');
+export const METHODS = choices('method');
+export const DIFFERENTIALS = choices('differential');
+// Column heads of the method x differential tick tables, which must fit a narrow form.
+export const DIFFERENTIALS_SHORT = choices('differential', 'short');
+export const INTEGRATORS = choices('integrator');
+export const METRICS = choices('heatmap_metric');
+
+// Per status: the colour of its badge and heatmap cells (the renderer's failure colours, outside viridis) and
+// a one-line description.
+export const STATUSES = Object.fromEntries(entries('status').map((s) => [s.value, { color: s.color, text: s.description }]));
+
+export const SERIES_COLORS = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000',
+  '#8c564b', '#7f7f7f', '#bcbd22'];
+
+export function label(list, value) {
+  const hit = list.find(([v]) => v === value);
+  return hit ? hit[1] : value;
+}
+
+// Exponential with 3 decimals: readable and still parseable by Number().
+export function fmtExp(x) {
+  if (x === null || x === undefined) return '\u2014';
+  if (!Number.isFinite(x)) return String(x);
+  return x === 0 ? '0' : x.toExponential(3);
+}
+
+export function fmtRate(r) {
+  return r === null || r === undefined ? '\u2014' : r.toFixed(3);
+}
+
+export function fmtSeconds(s) {
+  if (s === null || s === undefined) return '\u2014';
+  if (s < 1e-3) return `${(s * 1e6).toFixed(1)} \u00b5s`;
+  if (s < 1) return `${(s * 1e3).toFixed(2)} ms`;
+  return `${s.toFixed(2)} s`;
+}
+
+// h values of the grids are powers of two: show both forms.
+export function fmtH(h) {
+  const k = Math.log2(h);
+  const exact = Number.isInteger(k) ? ` (2^${k})` : '';
+  return `${Number(h.toPrecision(6))}${exact}`;
+}
