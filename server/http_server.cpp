@@ -63,15 +63,14 @@ void send(HttpResponse answer, httplib::Response& res) {
     res.set_content(std::move(answer.body), answer.content_type);
     return;
   }
-  res.set_chunked_content_provider(answer.content_type,
-                                   [stream = std::move(answer.stream)](std::size_t, httplib::DataSink& sink) {
-                                     const ChunkSink write = [&sink](std::string_view chunk) {
-                                       return sink.write(chunk.data(), chunk.size());
-                                     };
-                                     if (!stream(write)) return false;
-                                     sink.done();
-                                     return true;
-                                   });
+  // cpp-httplib calls the provider until it signals done(); the stream writes the whole body in one call.
+  auto provider = [stream = std::move(answer.stream)](std::size_t, httplib::DataSink& sink) {
+    const ChunkSink write = [&sink](std::string_view chunk) { return sink.write(chunk.data(), chunk.size()); };
+    if (!stream(write)) return false;  // client gone: cpp-httplib closes the connection
+    sink.done();
+    return true;
+  };
+  res.set_chunked_content_provider(answer.content_type, std::move(provider));
 }
 
 // The request is a local of cpp-httplib's process_request; asking for Connection: close makes it close the
