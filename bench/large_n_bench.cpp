@@ -15,7 +15,7 @@
 
 #include <string>
 
-#include "core/newton.hpp"
+#include "core/solvers/run_method.hpp"
 #include "core/solve.hpp"
 
 namespace {

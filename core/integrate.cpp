@@ -3,8 +3,10 @@
 #include <cmath>
 
 #include "cpu_clock.hpp"
-#include "newton.hpp"
+#include "groups/with_group.hpp"
+#include "problems.hpp"
 #include "reference_solution.hpp"
+#include "solvers/run_method.hpp"
 #include "start_point.hpp"
 #include "validation.hpp"
 
@@ -87,7 +89,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
     if (rec.status == Status::converged) y = last_stage;
     rec.energy = energy(y);
     if (body) drift = std::max(drift, std::abs(rec.energy - e0) / e0);
-    res.orthogonality_error = std::max(res.orthogonality_error, orthogonality_error(y));
+    res.orthogonality_error = std::max(res.orthogonality_error, group.defect(y));
     res.steps.push_back(rec);
     if (frame_every && (k % frame_every == 0 || k == steps)) {
       res.frames.push_back(y);
@@ -134,8 +136,8 @@ void validate(const IntegrateRequest& req) {
 IntegrateResult integrate(const IntegrateRequest& req, const StepCallback& on_step) {
   validate(req);
   const Eigen::MatrixXd y0 = req.z ? *req.z : start_point(req.n, req.seed);
-  IntegrateResult res = req.n == 3 ? integrate_on(SO3Group{}, req, y0, on_step)
-                                   : integrate_on(SONGroup(req.n), req, y0, on_step);
+  IntegrateResult res =
+      with_group(req.n, [&](const auto& group) { return integrate_on(group, req, y0, on_step); });
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
     res.global_error = (res.y - reference_solution(req.problem, req.rigid_body, y0, req.t_end)).norm();

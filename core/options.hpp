@@ -13,7 +13,7 @@ enum class Method { fixed_point, newton_group, newton_algebra };
 enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
 // implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6)
 enum class Integrator { implicit_euler, dirk_cg2 };
-// How the Newton system is solved: auto picks lu below kKrylovThreshold (newton.hpp) and gmres above;
+// How the Newton system is solved: auto picks lu below kKrylovThreshold (solvers/newton_step.hpp) and gmres above;
 // lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
 enum class LinearSolver { auto_select, lu, gmres };
 

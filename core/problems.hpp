@@ -1,13 +1,15 @@
 #pragma once
 // The test problems: vector fields g: G -> g of y' = y g(y) with their exact differentials
 // dg_y(U) = d/dt g(y exp(tU)) at t = 0 (the tangent at y in direction U is y U).
-// Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates.
+// Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates. A problem may add
+// dg_matrix(group, y) for the groups whose basis it knows; the others assemble dg's matrix column by column.
 #include <Eigen/Dense>
 #include <memory>
-#include <type_traits>
 
-#include "lie_groups.hpp"
-#include "solve.hpp"
+#include "groups/so3_group.hpp"
+#include "groups/son_group.hpp"
+#include "options.hpp"
+#include "rigid_body_params.hpp"
 
 namespace lienewton {
 
@@ -22,8 +24,8 @@ class VectorField {
   virtual Vector dg(const Element& y, const Vector& u) const = 0;
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
-    Operator m = group.operator_matrix();
-    for (int i = 0; i < group.dim(); ++i) m.col(i) = dg(y, group.unit(i));
+    Operator m = zero_operator(group);
+    for (int i = 0; i < group.dim(); ++i) m.col(i) = dg(y, basis_vector(group, i));
     return m;
   }
 };
@@ -48,7 +50,7 @@ struct PaperLinear {
   }
   // On the basis of so(N): y b_ab = y_:a e_b^T - y_:b e_a^T has superdiagonal entries only at (b-1, b)
   // and (a-1, a), so each column has at most two entries.
-  Eigen::MatrixXd dg_matrix(const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
     const int n = static_cast<int>(y.rows());
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * (n - 1) / 2, n * (n - 1) / 2);
     for (int a = 0, col = 0; a < n; ++a)
@@ -79,7 +81,7 @@ struct PaperSine {
   }
   // On the basis of so(N), dy = y b_ab = y_:a e_b^T - y_:b e_a^T has rank 2, so with s y and s y y formed once
   // every column of the product rule is a sum of outer products: O(N^2) per column instead of O(N^3).
-  Eigen::MatrixXd dg_matrix(const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
     using Eigen::MatrixXd;
     const int n = static_cast<int>(y.rows());
     const MatrixXd s = y.array().sin().matrix(), c = y.array().cos().matrix();
@@ -113,7 +115,7 @@ struct RigidBody {
     return embed(body_velocity(Eigen::Matrix3d(dir).transpose() * (Eigen::Matrix3d(y).transpose() * params.momentum)));
   }
   // In rotation-vector coordinates dg_y(u) = -I^-1 (u x M) = I^-1 hat(M) u with M = y^T m.
-  Eigen::Matrix3d dg_matrix_so3(const Eigen::Matrix3d& y) const {
+  Eigen::Matrix3d dg_matrix(const SO3Group&, const Eigen::Matrix3d& y) const {
     return params.inertia.cwiseInverse().asDiagonal() * so3::hat(y.transpose() * params.momentum);
   }
   double energy(const Eigen::Matrix3d& y) const {
@@ -137,10 +139,8 @@ class VectorFieldOf final : public VectorField<G> {
     return group_.vee(problem_.dg(y, Element(group_.hat(u))));
   }
   typename G::Operator dg_matrix(const G& group, const Element& y) const override {
-    if constexpr (std::is_same_v<G, SONGroup> && requires { problem_.dg_matrix(y); }) {
-      return problem_.dg_matrix(y);
-    } else if constexpr (std::is_same_v<G, SO3Group> && requires { problem_.dg_matrix_so3(y); }) {
-      return problem_.dg_matrix_so3(y);
+    if constexpr (requires { problem_.dg_matrix(group, y); }) {  // the problem's structured matrix on G's basis
+      return problem_.dg_matrix(group, y);
     } else {
       return VectorField<G>::dg_matrix(group, y);
     }

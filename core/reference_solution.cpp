@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "groups/with_group.hpp"
 #include "problems.hpp"
 
 namespace lienewton {
@@ -13,7 +14,7 @@ typename G::Element rkmk4_step(const G& group, const VectorField<G>& field, cons
   using Vector = typename G::Vector;
   auto stage = [&](const Vector& offset) {
     const Vector g = field.g(group.times_exp(y, offset));
-    return Vector(h * group.dexpinv(group.exp_form(offset), g));
+    return Vector(h * group.dexpinv(group.spectral(offset), g));
   };
   const Vector k1 = h * field.g(y);
   const Vector k2 = stage(0.5 * k1);
@@ -37,9 +38,9 @@ Eigen::MatrixXd integrate_reference(const G& group, ProblemKind problem, const R
 
 Eigen::MatrixXd reference_solution(ProblemKind problem, const RigidBodyParams& rb, const Eigen::MatrixXd& y0,
                                    double t_end) {
-  const int n = static_cast<int>(y0.rows());
-  if (n == 3) return integrate_reference(SO3Group{}, problem, rb, y0, t_end);
-  return integrate_reference(SONGroup(n), problem, rb, y0, t_end);
+  return with_group(static_cast<int>(y0.rows()), [&](const auto& group) {
+    return integrate_reference(group, problem, rb, y0, t_end);
+  });
 }
 
 }  // namespace lienewton

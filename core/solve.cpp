@@ -1,6 +1,8 @@
 #include "solve.hpp"
 
-#include "newton.hpp"
+#include "groups/with_group.hpp"
+#include "problems.hpp"
+#include "solvers/run_method.hpp"
 #include "start_point.hpp"
 #include "validation.hpp"
 
@@ -30,9 +32,7 @@ void validate(const SolveRequest& req) {
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {
   validate(req);
   const Eigen::MatrixXd z = req.z ? *req.z : start_point(req.n, req.seed);
-  // SO(3) takes the closed forms on fixed-size types; every other N the spectral path.
-  if (req.n == 3) return solve_on(SO3Group{}, req, z, on_iteration);
-  return solve_on(SONGroup(req.n), req, z, on_iteration);
+  return with_group(req.n, [&](const auto& group) { return solve_on(group, req, z, on_iteration); });
 }
 
 }  // namespace lienewton

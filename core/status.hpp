@@ -8,7 +8,7 @@ namespace lienewton {
 enum class Status {
   converged,              // ||f(y_n)|| <= tol
   max_iterations,         // max_iterations updates done, f(y_max) still above tol
-  diverged,               // residual or step grew past kDivergenceBound (see newton.hpp)
+  diverged,               // residual or step grew past kDivergenceBound (see solvers/iteration_monitor.hpp)
   non_finite,             // a NaN or Inf appeared in f, the differential or the iterate
   left_log_domain,        // z^-1 y_n reached rotation angle pi (within kLogDomainMargin): log undefined
   singular_differential,  // the q x q Newton system is singular or too badly conditioned to trust

@@ -2,7 +2,8 @@
 // differences of f with a step-size slope check.
 #include <gtest/gtest.h>
 
-#include "core/newton.hpp"
+#include "core/solve.hpp"
+#include "core/solvers/run_method.hpp"
 #include "core/start_point.hpp"
 
 namespace lienewton {
@@ -26,13 +27,13 @@ TEST_P(Differentials, AssembledMatricesMatchColumnApplication) {
   for (Differential d : {Differential::dexpinv_0, Differential::dexpinv_1, Differential::exact}) {
     const Eigen::MatrixXd m1 = eq.df_matrix(p1, d), m2 = eq.dftilde_matrix(p2, d);
     for (int i = 0; i < g.dim(); ++i) {
-      EXPECT_LT((m1.col(i) - eq.df(p1, g.unit(i), d)).norm(), 1e-13 * (1 + m1.norm())) << to_string(d) << " col " << i;
-      EXPECT_LT((m2.col(i) - eq.dftilde(p2, g.unit(i), d)).norm(), 1e-13 * (1 + m2.norm())) << to_string(d) << " col " << i;
+      EXPECT_LT((m1.col(i) - eq.df(p1, basis_vector(g, i), d)).norm(), 1e-13 * (1 + m1.norm())) << to_string(d) << " col " << i;
+      EXPECT_LT((m2.col(i) - eq.dftilde(p2, basis_vector(g, i), d)).norm(), 1e-13 * (1 + m2.norm())) << to_string(d) << " col " << i;
     }
   }
   // dg's structured matrix equals the generic column loop.
   const Eigen::MatrixXd dg = field->dg_matrix(g, y1);
-  for (int i = 0; i < g.dim(); ++i) EXPECT_LT((dg.col(i) - field->dg(y1, g.unit(i))).norm(), 1e-13 * (1 + dg.norm()));
+  for (int i = 0; i < g.dim(); ++i) EXPECT_LT((dg.col(i) - field->dg(y1, basis_vector(g, i))).norm(), 1e-13 * (1 + dg.norm()));
 }
 
 TEST_P(Differentials, ExactDifferentialMatchesCentralDifferencesWithSlopeTwo) {

@@ -5,9 +5,10 @@
 
 #include <cmath>
 
-#include "core/newton.hpp"
+#include "core/solvers/run_method.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
+#include "rn_group.hpp"
 
 namespace lienewton {
 namespace {
@@ -166,7 +167,7 @@ TEST(Theorem32, VersionTwoLinearisesVersionOne) {
 
   auto newton_system = [&](auto apply) {
     Eigen::MatrixXd d(g.dim(), g.dim());
-    for (int i = 0; i < g.dim(); ++i) d.col(i) = apply(g.unit(i));
+    for (int i = 0; i < g.dim(); ++i) d.col(i) = apply(basis_vector(g, i));
     return d;
   };
   std::vector<double> ratios;

@@ -6,15 +6,16 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
-#include "core/son.hpp"
+#include "core/groups/son.hpp"
 
 namespace lienewton::son {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 Mat random_rotation(int n, std::mt19937_64& rng) {
   std::normal_distribution<double> normal;

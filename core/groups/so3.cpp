@@ -4,7 +4,8 @@
 #include <array>
 #include <limits>
 
-#include "log_domain_error.hpp"
+#include "bernoulli.hpp"
+#include "log_domain.hpp"
 
 namespace lienewton::so3 {
 namespace {
@@ -18,13 +19,8 @@ constexpr std::array<double, 12> kCSeries = {
     1.0 / 1307674368000, -1.0 / 355687428096000, 1.0 / 1.21645100408832e17, -1.0 / 5.109094217170944e19,
     1.0 / 2.585201673888498e22, -1.0 / 1.5511210043330986e25};
 
-// |B_2k| / (2k)!, k = 1..18: (1 - (t/2)cot(t/2))/t^2 = sum_k |B_2k|/(2k)! t^(2k-2)
-constexpr std::array<double, 18> kDSeries = {
-    0.083333333333333329,  0.0013888888888888889,  3.3068783068783071e-05, 8.2671957671957675e-07,
-    2.08767569878681e-08,  5.2841901386874932e-10, 1.3382536530684679e-11, 3.3896802963225827e-13,
-    8.5860620562778452e-15, 2.1748686985580619e-16, 5.5090028283602295e-18, 1.3954464685812522e-19,
-    3.5347070396294673e-21, 8.9535174270375463e-23, 2.2679524523376829e-24, 5.7447906688722025e-26,
-    1.455172475614865e-27, 3.6859949406653103e-29};
+// (1 - (t/2)cot(t/2))/t^2 = sum_k |B_2k|/(2k)! t^(2k-2), k = 1..18
+constexpr const std::array<double, 18>& kDSeries = kBernoulliOverFactorial;
 
 template <std::size_t K>
 double horner_in_t2(const std::array<double, K>& c, double t2) {

@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "solve.hpp"
+#include "core/options.hpp"
+#include "solve_result.hpp"
 
 namespace lienewton {
 
@@ -30,16 +31,18 @@ class IterationMonitor {
  public:
   IterationMonitor(const SolverOptions& options, const TraceCallback& callback, int algebra_dim);
 
-  // Records iterate n. Returns the status to stop with, or nothing to go on. scale ~ 1 + ||v|| + h ||g||
-  // sets the rounding floor 64 eps sqrt(q) scale below which a non-decreasing residual means stagnation.
+  // Records iterate n and defect(y_n). Returns the status to stop with, or nothing to go on.
+  // scale ~ 1 + ||v|| + h ||g|| sets the rounding floor 64 eps sqrt(q) scale below which a non-decreasing
+  // residual means stagnation.
   template <class Element>
-  std::optional<Status> record(double residual, double step, double angle, const Element& y, double scale) {
+  std::optional<Status> record(double residual, double step, double angle, const Element& y, double defect,
+                               double scale) {
     TraceRecord rec;
     rec.iteration = iteration_;
     rec.residual = residual;
     rec.step = step;
     rec.angle = angle;
-    rec.orthogonality_error = orthogonality_error_of(y);
+    rec.orthogonality_error = defect;
     rec.seconds = elapsed();
     if (options_.include_iterates) rec.y = y;
     return commit(rec, scale);
@@ -54,14 +57,6 @@ class IterationMonitor {
   double best_residual() const { return best_; }
 
  private:
-  template <class Element>
-  static double orthogonality_error_of(const Element& y) {
-    if constexpr (Element::ColsAtCompileTime == 1) {
-      return 0.0;
-    } else {
-      return (y.transpose() * y - Element::Identity(y.rows(), y.cols())).norm();
-    }
-  }
   std::optional<Status> commit(TraceRecord& rec, double scale);
 
   SolverOptions options_;

@@ -10,8 +10,9 @@
 #include <Eigen/Dense>
 #include <stdexcept>
 
-#include "log_domain_error.hpp"
 #include <vector>
+
+#include "log_domain.hpp"
 
 namespace lienewton::son {
 
@@ -20,10 +21,7 @@ using Vec = Eigen::VectorXd;
 
 inline int algebra_dim(int n) { return n * (n - 1) / 2; }
 
-// Angles closer than this to pi are refused by log: there the logarithm is not unique (exactly pi) and its
-// branch flips under rounding, so a "solution" would be meaningless.
-inline constexpr double kLogDomainMargin = 1e-10;
-
+using lienewton::kLogDomainMargin;
 using lienewton::LogDomainError;
 
 Mat hat(const Vec& alpha, int n);
@@ -41,8 +39,6 @@ struct SpectralForm {
   double max_angle() const;  // largest |theta|
   Mat skew() const;          // v: accurate_skew if set, else Q blockdiag(theta J, 0) Q^T; exactly skew
   Mat rotation() const;      // exp(v) = Q blockdiag(rot theta, 1) Q^T
-  // y exp(v) as y + (y Q) (blockdiag(rot theta, 1) - I) Q^T: see so3::expm1 for why not y * rotation().
-  Mat times_rotation(const Mat& y) const;
 };
 
 SpectralForm spectral_form_of_skew(const Mat& v);

@@ -25,8 +25,6 @@ namespace lienewton::so3 {
 using Vec = Eigen::Vector3d;
 using Mat = Eigen::Matrix3d;
 
-inline constexpr double kPi = 3.14159265358979323846;
-
 inline Mat hat(const Vec& w) {
   Mat m;
   m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;

@@ -7,17 +7,18 @@
 //   Version 1: df_y(u) = dexpinv_v(u) - h dg_y(u)  exact (3.8), u - h dg_y(u) (3.10), u + [v,u]/2 - h dg_y(u) (3.11)
 //   Version 2: u - h dg_y(dexp_v(u))  exact (3.22), u - h dg_y(u) (3.16), u - h dg_y(u - [v,u]/2) (3.17)
 // Finite differences (3.18)/(3.19) are built by the solvers from f alone.
+#include <cmath>
 #include <functional>
-#include <optional>
-#include <stdexcept>
+#include <limits>
 
-#include "lie_groups.hpp"
-#include "options.hpp"
-#include "problems.hpp"
+#include "core/groups/lie_group.hpp"
+#include "core/groups/log_domain.hpp"
+#include "core/options.hpp"
+#include "core/problems.hpp"
 
 namespace lienewton {
 
-template <class G>
+template <LieGroup G>
 class Equation {
  public:
   using Element = typename G::Element;
@@ -34,9 +35,9 @@ class Equation {
     Vector v;              // coordinates of v
     Vector hg;             // h g(y) (implicit Euler only)
     Vector f;              // f(y) (Version 1) or f~(v) (Version 2)
-    double angle = 0;      // largest rotation angle of z^-1 y, in [0, pi]
-    double algebra_angle = 0;  // largest rotation angle of v as an algebra element (may exceed pi)
-    bool in_domain = true; // false: z^-1 y is at angle pi, log (hence f) undefined
+    double angle = 0;      // largest rotation angle of z^-1 y, in [0, kLogRadius]
+    double algebra_angle = 0;  // largest rotation angle of v as an algebra element (may exceed kLogRadius)
+    bool in_domain = true; // false: z^-1 y is at the boundary of log's domain, log (hence f) undefined
   };
 
   // What an evaluation must provide: f alone (difference quotients, fixed point), or also the spectral
@@ -77,7 +78,7 @@ class Equation {
     p.v = v;
     p.y = group_.times_exp(z_, v);
     if (need == Need::differential) {
-      p.v_form = group_.exp_form(v);
+      p.v_form = group_.spectral(v);
       p.algebra_angle = group_.angle(p.v_form);
       p.angle = principal_angle(p.algebra_angle);
     }
@@ -126,10 +127,10 @@ class Equation {
   // plus dg's matrix; differences perturb y by exp(t b_i), a plane rotation on SO(N).
   Operator df_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
-      Operator m = group_.operator_matrix();
-      const double t = difference_step(p, group_.unit(0));
+      Operator m = zero_operator(group_);
+      const double t = difference_step(p, basis_vector(group_, 0));
       for (int i = 0; i < group_.dim(); ++i) {
-        const Point q = at(group_.times_exp_unit(p.y, i, t), Need::residual);
+        const Point q = at(group_.times_exp(p.y, t * basis_vector(group_, i)), Need::residual);
         if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
         m.col(i) = (q.f - p.f) / t;
       }
@@ -138,8 +139,8 @@ class Equation {
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, u); });
     const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
     switch (d) {
-      case Differential::dexpinv_0: return group_.identity_operator() - hdg;
-      case Differential::dexpinv_1: return group_.identity_operator() + 0.5 * group_.ad_matrix(p.v) - hdg;
+      case Differential::dexpinv_0: return identity_operator(group_) - hdg;
+      case Differential::dexpinv_1: return identity_operator(group_) + 0.5 * group_.ad_matrix(p.v) - hdg;
       default: return group_.dexpinv_matrix(p.v_form) - hdg;
     }
   }
@@ -147,33 +148,32 @@ class Equation {
   // The q x q matrix of df~_v on the basis.
   Operator dftilde_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
-      Operator m = group_.operator_matrix();
-      const double t = difference_step(p, group_.unit(0));
+      Operator m = zero_operator(group_);
+      const double t = difference_step(p, basis_vector(group_, 0));
       for (int i = 0; i < group_.dim(); ++i)
-        m.col(i) = (at_algebra(p.v + t * group_.unit(i), Need::residual).f - p.f) / t;
+        m.col(i) = (at_algebra(p.v + t * basis_vector(group_, i), Need::residual).f - p.f) / t;
       return m;
     }
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, group_.dexp(p.v_form, u)); });
     const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
     switch (d) {
-      case Differential::dexpinv_0: return group_.identity_operator() - hdg;
+      case Differential::dexpinv_0: return identity_operator(group_) - hdg;
       case Differential::dexpinv_1:
-        return group_.identity_operator() - hdg * (group_.identity_operator() - 0.5 * group_.ad_matrix(p.v));
-      default: return group_.identity_operator() - hdg * group_.dexp_matrix(p.v_form);
+        return identity_operator(group_) - hdg * (identity_operator(group_) - 0.5 * group_.ad_matrix(p.v));
+      default: return identity_operator(group_) - hdg * group_.dexp_matrix(p.v_form);
     }
   }
 
   // The fixed-point map (1.2): y -> z exp(h g(y)).
   Element fixed_point_map(const Point& p) const { return group_.times_exp(z_, p.hg); }
 
-  // y solves y = z exp(h g(y)) to rounding (checked without log), but h g(y) has a rotation angle beyond pi,
-  // so log(z^-1 y) != h g(y): a true solution of (1.1) that f of (3.6) cannot see.
+  // y solves y = z exp(h g(y)) to rounding (checked without log), but h g(y) has a rotation angle beyond
+  // log's radius (pi), so log(z^-1 y) != h g(y): a true solution of (1.1) that f of (3.6) cannot see.
   bool is_off_branch_solution(const Element& y) const {
     if (!field_) return false;
     const Vector w = h_ * field_->g(y);
-    const Spectral form = group_.exp_form(w);
-    if (!(group_.angle(form) > so3::kPi)) return false;
-    const Element defect = group_.times_exp_form(z_, form) - y;
+    if (!(group_.angle(group_.spectral(w)) > G::kLogRadius)) return false;
+    const Element defect = group_.times_exp(z_, w) - y;
     constexpr double eps = std::numeric_limits<double>::epsilon();
     return defect.norm() <= 256.0 * eps * std::sqrt(double(group_.dim())) * (1.0 + w.norm());
   }
@@ -192,35 +192,32 @@ class Equation {
 
   template <class Apply>
   Operator columns(Apply apply) const {
-    Operator m = group_.operator_matrix();
-    for (int i = 0; i < group_.dim(); ++i) m.col(i) = apply(group_.unit(i));
+    Operator m = zero_operator(group_);
+    for (int i = 0; i < group_.dim(); ++i) m.col(i) = apply(basis_vector(group_, i));
     return m;
   }
 
-  static double principal_angle(double theta) {
-    const double two_pi = 2.0 * so3::kPi;
-    const double wrapped = std::remainder(theta, two_pi);
-    return std::abs(wrapped);
-  }
+  // The rotation angle of exp(v) from the algebra angle of v: wrapped into [0, kLogRadius] (= pi).
+  static double principal_angle(double theta) { return std::abs(std::remainder(theta, 2.0 * G::kLogRadius)); }
 
-  // v = log(z^-1 y); false when z^-1 y is at the edge of log's domain (angle pi).
+  // v = log(z^-1 y); false when z^-1 y is at the edge of log's domain.
   bool read_log(Point& p, Need need) const {
     const Element w = group_.compose(z_inv_, p.y);
     try {
       if (need == Need::differential) {
-        p.v_form = group_.log_form(w);
+        p.v_form = group_.log(w);
         p.angle = group_.angle(p.v_form);
-        p.v = group_.coords(p.v_form);
+        p.v = group_.vector(p.v_form);
       } else {
-        p.v = group_.log_coords(w, p.angle);
+        p.v = group_.log_vector(w, p.angle);
       }
     } catch (const LogDomainError& e) {
-      p.angle = std::isnan(e.angle()) ? so3::kPi : e.angle();
+      p.angle = std::isnan(e.angle()) ? G::kLogRadius : e.angle();
       p.in_domain = !field_;  // a user f does not need log
       return p.in_domain;
     }
     p.algebra_angle = p.angle;
-    p.in_domain = p.angle <= so3::kPi - son::kLogDomainMargin || !field_;
+    p.in_domain = inside_log_domain<G>(p.angle) || !field_;
     return p.in_domain;
   }
 

@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <optional>
+
+#include "bernoulli.hpp"
 
 namespace lienewton::son {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Reads the real Schur form T of a normal matrix: blocks of size 1 or 2 along the diagonal. The angle of a
 // 2x2 block [a b; c d] is atan2((c - b)/2, (a + d)/2) for a rotation and (c - b)/2 for a skew matrix: the
@@ -182,10 +184,6 @@ Mat SpectralForm::rotation() const {
   return Mat::Identity(n, n) + q * rotation_minus_identity(*this) * q.transpose();
 }
 
-Mat SpectralForm::times_rotation(const Mat& y) const {
-  return y + (y * q) * rotation_minus_identity(*this) * q.transpose();
-}
-
 SpectralForm spectral_form_of_skew(const Mat& v) {
   Eigen::RealSchur<Mat> schur(v);
   SpectralForm s;
@@ -235,7 +233,7 @@ Mat expm1(const Mat& v) {
   const Mat v2 = v * v;
   const Eigen::SelfAdjointEigenSolver<Mat> eig(0.5 * (v2 + v2.transpose()));
   // Eigenvalue errors grow like eps |v|^2: beyond angle pi the Schur form keeps exp(v) orthogonal to N eps.
-  if (-eig.eigenvalues()(0) > kPi * kPi) {
+  if (-eig.eigenvalues()(0) > std::numbers::pi * std::numbers::pi) {
     const SpectralForm s = spectral_form_of_skew(v);
     return s.q * rotation_minus_identity(s) * s.q.transpose();
   }
@@ -281,8 +279,8 @@ SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, d
   for (const auto& b : s.blocks)
     if (b.size == 1 && t(b.start, b.start) < 0.0) ++minus_ones;
   if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
-  const double angle = minus_ones > 0 ? kPi : s.max_angle();
-  if (angle > kPi - margin)
+  const double angle = minus_ones > 0 ? std::numbers::pi : s.max_angle();
+  if (angle > std::numbers::pi - margin)
     throw LogDomainError("log undefined: rotation angle " + std::to_string(angle) + " is at pi", angle);
   double unused = 0.0;
   if (auto l = log_from_symmetric_part(r, unused)) s.accurate_skew = std::move(*l);
@@ -330,18 +328,13 @@ Mat times_givens(const Mat& y, int a, int b, double t) {
 }
 
 Mat dexpinv_series(const Mat& v, const Mat& u, int p_max) {
-  // B_2p / (2p)!, p = 1..11
-  static constexpr double kB[] = {0.083333333333333329,  -0.0013888888888888889, 3.3068783068783071e-05,
-                                  -8.2671957671957675e-07, 2.08767569878681e-08, -5.2841901386874932e-10,
-                                  1.3382536530684679e-11, -3.3896802963225827e-13, 8.5860620562778452e-15,
-                                  -2.1748686985580619e-16, 5.5090028283602295e-18};
-  constexpr int kMaxOrder = static_cast<int>(sizeof(kB) / sizeof(kB[0]));
+  constexpr int kMaxOrder = 11;
   if (p_max < 0 || p_max > kMaxOrder) throw std::invalid_argument("dexpinv_series: p_max out of range");
   Mat ad = bracket(v, u);
   Mat result = u + 0.5 * ad;
   for (int p = 1; p <= p_max; ++p) {
     ad = bracket(v, ad);
-    result += kB[p - 1] * ad;
+    result += bernoulli_over_factorial(p) * ad;
     ad = bracket(v, ad);
   }
   return result;

@@ -1,0 +1,70 @@
+#pragma once
+// What the solvers need of a Lie group G, as a concept every group static_asserts:
+//   Element (group element), Vector (algebra coordinates on a basis of dimension dim()), Operator (dim x dim
+//   matrix on coordinates), Spectral (what exp/log computed that dexp/dexpinv can reuse: the decomposition of
+//   z^-1 y serves both log and dexpinv);
+//   the group law (identity, compose, inverse), the algebra (hat, vee, bracket, ad_matrix),
+//   exp and times_exp(y, v) = y exp(v) (formed so that long products stay on the group),
+//   log through Spectral (log throws LogDomainError outside its domain) or straight to coordinates
+//   (log_vector: cheaper when no differential follows), dexp (2.10) and dexpinv (3.9) through Spectral,
+//   and what the group owns about its log: kLogRadius (log is defined for angle(...) < kLogRadius),
+//   kLogMargin (how close to the radius log still answers) and defect(y), the distance of y from the group
+//   (||y^T y - I||_F on SO(N)).
+// Adding a group: one header here that satisfies LieGroup, one line in tests/core/lie_group_properties_test.cpp.
+#include <concepts>
+
+namespace lienewton {
+
+template <class G>
+concept LieGroup = requires(const G g, const typename G::Element y, const typename G::Vector v,
+                            const typename G::Spectral s, double& angle) {
+  { g.n() } -> std::same_as<int>;
+  { g.dim() } -> std::same_as<int>;
+  { g.identity() } -> std::convertible_to<typename G::Element>;
+  { g.compose(y, y) } -> std::convertible_to<typename G::Element>;
+  { g.inverse(y) } -> std::convertible_to<typename G::Element>;
+  { g.hat(v) } -> std::convertible_to<typename G::Element>;
+  { g.vee(y) } -> std::convertible_to<typename G::Vector>;
+  { g.bracket(v, v) } -> std::convertible_to<typename G::Vector>;
+  { g.ad_matrix(v) } -> std::convertible_to<typename G::Operator>;
+  { g.exp(v) } -> std::convertible_to<typename G::Element>;
+  { g.times_exp(y, v) } -> std::convertible_to<typename G::Element>;
+  { g.spectral(v) } -> std::convertible_to<typename G::Spectral>;
+  { g.log(y) } -> std::convertible_to<typename G::Spectral>;
+  { g.log_vector(y, angle) } -> std::convertible_to<typename G::Vector>;
+  { g.vector(s) } -> std::convertible_to<typename G::Vector>;
+  { g.angle(s) } -> std::same_as<double>;
+  { g.dexp(s, v) } -> std::convertible_to<typename G::Vector>;
+  { g.dexpinv(s, v) } -> std::convertible_to<typename G::Vector>;
+  { g.dexp_matrix(s) } -> std::convertible_to<typename G::Operator>;
+  { g.dexpinv_matrix(s) } -> std::convertible_to<typename G::Operator>;
+  { g.defect(y) } -> std::same_as<double>;
+  { G::kLogRadius } -> std::convertible_to<double>;
+  { G::kLogMargin } -> std::convertible_to<double>;
+};
+
+// Coordinates and operators sized by the group (fixed-size types ignore the size arguments).
+template <class G>
+typename G::Vector zero_vector(const G& g) {
+  return G::Vector::Zero(g.dim());
+}
+template <class G>
+typename G::Vector basis_vector(const G& g, int i) {
+  return G::Vector::Unit(g.dim(), i);
+}
+template <class G>
+typename G::Operator zero_operator(const G& g) {
+  return G::Operator::Zero(g.dim(), g.dim());
+}
+template <class G>
+typename G::Operator identity_operator(const G& g) {
+  return G::Operator::Identity(g.dim(), g.dim());
+}
+
+// log answers at this angle (the largest rotation angle of an element, or of a Spectral).
+template <class G>
+bool inside_log_domain(double angle) {
+  return angle <= G::kLogRadius - G::kLogMargin;
+}
+
+}  // namespace lienewton

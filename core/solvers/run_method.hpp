@@ -1,0 +1,20 @@
+#pragma once
+// The three solvers of f(y) = 0 on a Lie group behind one switch: fixed_point (1.2), newton_group (3.5),
+// newton_algebra (3.20).
+#include "fixed_point.hpp"
+#include "newton_algebra.hpp"
+#include "newton_group.hpp"
+
+namespace lienewton {
+
+template <LieGroup G>
+SolveResult run_method(Method method, const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb) {
+  switch (method) {
+    case Method::fixed_point: return fixed_point(eq, opt, cb);
+    case Method::newton_group: return newton_group(eq, opt, cb);
+    case Method::newton_algebra: return newton_algebra(eq, opt, cb);
+  }
+  return {};
+}
+
+}  // namespace lienewton

@@ -1,0 +1,42 @@
+#pragma once
+// What a solver returns: the trace of every iterate and the result; TraceCallback streams the trace.
+#include <Eigen/Core>
+#include <functional>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/status.hpp"
+
+namespace lienewton {
+
+// One record per iterate y_n, n = 0, 1, ... (y_0 = z).
+struct TraceRecord {
+  int iteration = 0;
+  double residual = 0;             // ||f(y_n)||: 2-norm of coordinates in the basis E_ij - E_ji = ||f||_F / sqrt(2)
+  double step = 0;                 // ||u_{n-1}||, the update that produced y_n (0 for n = 0)
+  double angle = 0;                // largest rotation angle of z^-1 y_n
+  double orthogonality_error = 0;  // ||y_n^T y_n - I||_F (the group's defect of y_n)
+  double seconds = 0;              // since the solve started
+  Eigen::MatrixXd y;               // y_n when include_iterates, else empty
+  double distance_to_pi() const { return std::numbers::pi - angle; }
+};
+
+struct SolveResult {
+  Status status = Status::max_iterations;
+  std::string reason;
+  int iterations = 0;           // the n at which the loop stopped (converged: first n with ||f(y_n)|| <= tol)
+  std::optional<double> rate;   // the paper's r from the last three residuals, when iterations >= 3
+  double residual = 0;          // ||f(y_iterations)||
+  double orthogonality_error = 0;
+  Eigen::MatrixXd y;            // the final iterate (never NaN: a non-finite iterate is replaced by the last finite one)
+  std::vector<TraceRecord> trace;
+  double seconds = 0;
+  std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
+};
+
+// Called once per trace record as it is computed; return false to cancel the solve (status cancelled).
+using TraceCallback = std::function<bool(const TraceRecord&)>;
+
+}  // namespace lienewton

@@ -1,0 +1,52 @@
+#pragma once
+// The abelian group R^n under addition: exp and log are the identity, ad = 0, dexp = dexpinv = Id. Both Newton
+// versions must reduce to classical Newton on it; no production path uses it.
+#include <Eigen/Dense>
+#include <limits>
+
+#include "core/groups/lie_group.hpp"
+
+namespace lienewton {
+
+struct RnGroup {
+  using Element = Eigen::VectorXd;
+  using Vector = Eigen::VectorXd;
+  using Operator = Eigen::MatrixXd;
+  using Spectral = Eigen::VectorXd;
+  static constexpr double kLogRadius = std::numeric_limits<double>::infinity();  // log is global
+  static constexpr double kLogMargin = 0.0;
+
+  explicit RnGroup(int n) : n_(n) {}
+  int n() const { return n_; }
+  int dim() const { return n_; }
+  Element identity() const { return Element::Zero(n_); }
+  Element compose(const Element& a, const Element& b) const { return a + b; }
+  Element inverse(const Element& a) const { return -a; }
+  Element hat(const Vector& v) const { return v; }
+  Vector vee(const Element& m) const { return m; }
+  Vector bracket(const Vector&, const Vector&) const { return Vector::Zero(n_); }
+  Operator ad_matrix(const Vector&) const { return Operator::Zero(n_, n_); }
+
+  Element exp(const Vector& v) const { return v; }
+  Element times_exp(const Element& y, const Vector& v) const { return y + v; }
+  Spectral spectral(const Vector& v) const { return v; }
+  Spectral log(const Element& r) const { return r; }
+  Vector log_vector(const Element& r, double& angle) const {
+    angle = 0.0;
+    return r;
+  }
+  Vector vector(const Spectral& s) const { return s; }
+  double angle(const Spectral&) const { return 0.0; }
+  Vector dexp(const Spectral&, const Vector& u) const { return u; }
+  Vector dexpinv(const Spectral&, const Vector& u) const { return u; }
+  Operator dexp_matrix(const Spectral&) const { return Operator::Identity(n_, n_); }
+  Operator dexpinv_matrix(const Spectral&) const { return Operator::Identity(n_, n_); }
+
+  double defect(const Element&) const { return 0.0; }
+
+ private:
+  int n_;
+};
+static_assert(LieGroup<RnGroup>);
+
+}  // namespace lienewton
