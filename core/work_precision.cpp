@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "cpu_clock.hpp"
+#include "order_fit.hpp"
 #include "parallel_for.hpp"
 #include "reference_solution.hpp"
 #include "start_point.hpp"
@@ -54,6 +55,17 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
   return best;
 }
 
+// The observed order from the points whose run converged (a failed run's error says nothing about h^p).
+std::optional<double> series_order(const WorkPrecisionSeries& series) {
+  std::vector<double> h, error;
+  for (const WorkPrecisionPoint& p : series.points) {
+    if (p.status != Status::converged) continue;
+    h.push_back(p.h);
+    error.push_back(p.error);
+  }
+  return fitted_order(h, error);
+}
+
 }  // namespace
 
 void validate(const WorkPrecisionRequest& req) {
@@ -94,8 +106,9 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
     p.error = (run.y - y_ref).norm();
     for (const auto& s : run.steps) p.iterations += s.iterations;
     std::lock_guard lock(mutex);
-    if (--remaining[c] == 0 && on_series) return on_series(res.series[c]);
-    return true;
+    if (--remaining[c] > 0) return true;
+    res.series[c].fitted_order = series_order(res.series[c]);
+    return !on_series || on_series(res.series[c]);
   });
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return res;

@@ -1,6 +1,7 @@
 #pragma once
 // Work-precision data: for each (integrator, method, differential) and each step size h, the CPU time of
 // the integration and its global error, so that speed can be charted against accuracy.
+#include <optional>
 #include <vector>
 
 #include "integrate.hpp"
@@ -36,6 +37,8 @@ struct WorkPrecisionPoint {
 struct WorkPrecisionSeries {
   WorkPrecisionChoice choice;
   std::vector<WorkPrecisionPoint> points;
+  // Least-squares slope of log error vs log h over the converged points (order_fit.hpp): the observed order.
+  std::optional<double> fitted_order;
 };
 
 struct WorkPrecisionResult {

@@ -464,7 +464,7 @@ json to_json(const WorkPrecisionSeries& s) {
                           {"status", std::string(to_string(p.status))},
                           {"iterations", p.iterations}});
   }
-  return json{{"choice", to_json(s.choice)}, {"points", std::move(points)}};
+  return json{{"choice", to_json(s.choice)}, {"points", std::move(points)}, {"fitted_order", optional_number(s.fitted_order)}};
 }
 
 json to_json(const WorkPrecisionResult& r) {

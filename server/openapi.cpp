@@ -110,7 +110,10 @@ json schemas() {
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},
                                                                {"error", nullable_number("global error")},
-                                                               {"status", status}, {"iterations", integer("")}}, {}, false))}}, {}, false))},
+                                                               {"status", status}, {"iterations", integer("")}}, {}, false))},
+                                   {"fitted_order", nullable_number("observed order: least-squares slope of log error vs log h "
+                                                                    "over the converged points (null with fewer than two)")}},
+                                  {}, false))},
        {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);
   s["SolveStreamRecord"] = json{
       {"description", "One NDJSON line / SSE data field. type is iteration|cell|step|series for progress records (the "
