@@ -71,9 +71,9 @@ int main(int argc, char** argv) {
 
     lienewton::render::LineChart chart;
     chart.title = "Newton Version 1, paper-linear, h = 2^-2: time per iteration";
-    chart.x_label = "N (SO(N), q = N(N-1)/2 unknowns)";
-    chart.y_label = "time / iteration";
-    chart.y_unit = lienewton::render::AxisUnit::seconds;
+    chart.x.label = "N (SO(N), q = N(N-1)/2 unknowns)";
+    chart.y.label = "time / iteration";
+    chart.y.unit = lienewton::render::AxisUnit::seconds;
     for (const auto& [key, label] : kDifferentials) {
       const auto it = series.find(key);
       if (it == series.end()) continue;
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
       char text[128];
       std::snprintf(text, sizeof text, "%s: fit N >= %d ~ N^%.2f", label.c_str(), min_n, slope);
       s.label = text;
-      s.color = lienewton::render::series_color(chart.series.size());
+      s.style = lienewton::render::series_style(chart.series.size());
       for (const auto& [n, t] : it->second.seconds_per_iteration) {
         s.x.push_back(n);
         s.y.push_back(t);

@@ -21,6 +21,11 @@ void Canvas::rect(float x0, float y0, float x1, float y1, Color color) {
   quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {u, v, u, v}, color, {}, {}, 0);
 }
 
+void Canvas::triangle(Point a, Point b, Point c, Color color) {
+  const float u = font_.solid_u(), v = font_.solid_v();
+  for (const Point& p : {a, b, c}) vertices_.push_back({p.x, p.y, u, v, color, 0, 0, 0, 0, 0});
+}
+
 void Canvas::line(Point a, Point b, float width, Color color) {
   const float half = 0.5f * width;
   const float pad = half + 1.0f;  // room for the antialiased fringe and the round caps

@@ -36,6 +36,7 @@ class Canvas {
 
   void rect(float x0, float y0, float x1, float y1, Color color);
   void line(Point a, Point b, float width, Color color);
+  void triangle(Point a, Point b, Point c, Color color);  // filled, not antialiased
   // y is the vertical middle of capital letters; x is the left edge, middle or right edge per align.
   void text(std::string_view text, float x, float y, TextSize size, Color color, Align align = Align::left);
 

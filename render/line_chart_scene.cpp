@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 
 #include "render/gl_context.hpp"
@@ -17,90 +15,76 @@ namespace {
 
 constexpr Color kAxisColor{90, 90, 90, 255};
 constexpr Color kGridColor{225, 225, 225, 255};
+constexpr Color kMinorGridColor{242, 242, 242, 255};
 constexpr float kTick = 4;
-constexpr float kMarker = 7;      // side of a marker square, pixels
-constexpr float kLineWidth = 2;
-constexpr float kSwatch = 22;     // legend line sample length
+constexpr float kSwatch = 28;        // legend sample length
+constexpr float kLabelSpacing = 70;  // least distance between two x tick labels, pixels
+constexpr float kYLabelSpacing = 28;
 
-// Ticks on a log axis: every decade; also 2 and 5 times a decade when the axis spans at most two decades.
-std::vector<double> log_ticks(double log_lo, double log_hi) {
-  const bool fine = log_hi - log_lo <= 2.0 + 1e-9;
-  std::vector<double> ticks;
-  for (int e = static_cast<int>(std::floor(log_lo)); e <= static_cast<int>(std::ceil(log_hi)); ++e) {
-    for (double m : {1.0, 2.0, 5.0}) {
-      if (m != 1.0 && !fine) continue;
-      const double l = e + std::log10(m);
-      if (l >= log_lo - 1e-9 && l <= log_hi + 1e-9) ticks.push_back(m * std::pow(10.0, e));
-    }
-  }
-  return ticks;
-}
+double axis_coordinate(double v, AxisScale scale) { return scale == AxisScale::log ? std::log10(v) : v; }
+double axis_value(double c, AxisScale scale) { return scale == AxisScale::log ? std::pow(10.0, c) : c; }
 
-std::string axis_label(double value, AxisUnit unit) {
-  char text[32];
-  if (unit == AxisUnit::seconds) {
-    static constexpr struct {
-      double scale;
-      const char* suffix;
-    } kUnits[] = {{1.0, "s"}, {1e-3, "ms"}, {1e-6, "us"}, {1e-9, "ns"}};
-    for (const auto& u : kUnits) {
-      if (value >= u.scale * (1 - 1e-9) || u.scale == 1e-9) {
-        std::snprintf(text, sizeof text, "%g %s", value / u.scale, u.suffix);
-        return text;
-      }
-    }
-  }
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-// Axis ends: the data range widened by a margin of 5% of its (log) span, at least a tenth of a decade.
-std::pair<double, double> log_range(double lo, double hi) {
-  double a = std::log10(lo), b = std::log10(hi);
-  const double margin = std::max(0.05 * (b - a), 0.1);
+// Axis ends from the data range: a margin of 5% of the span, at least a tenth of a decade on a log axis
+// and half a unit on a linear one.
+std::pair<double, double> axis_range(double lo, double hi, AxisScale scale) {
+  const double a = axis_coordinate(lo, scale), b = axis_coordinate(hi, scale);
+  const double margin = std::max(0.05 * (b - a), scale == AxisScale::log ? 0.1 : 0.5);
   return {a - margin, b + margin};
+}
+
+std::vector<AxisTick> ticks_of(const ChartAxis& axis, double lo, double hi, float pixels, float spacing) {
+  return axis.scale == AxisScale::log ? log_ticks(lo, hi, pixels, spacing)
+                                      : linear_ticks(lo, hi, pixels, spacing, axis.min_step);
+}
+
+float legend_text_width(const LineChart& chart) {
+  const Font& font = Font::instance();
+  float w = chart.legend_title.empty() ? 0 : font.width(chart.legend_title, TextSize::small) - kSwatch - 6;
+  for (const auto& s : chart.series) w = std::max(w, font.width(s.label, TextSize::small));
+  return w;
 }
 
 void draw_axes(Canvas& canvas, const LineChart& chart, const LineChartLayout& l) {
   const float small = Font::instance().pixel_height(TextSize::small);
-  for (double x : log_ticks(l.log_x_lo, l.log_x_hi)) {
-    const float px = l.project(x, std::pow(10.0, l.log_y_lo)).x;
-    canvas.rect(px - 0.5f, l.top, px + 0.5f, l.bottom, kGridColor);
+  for (const AxisTick& t : ticks_of(chart.x, l.x_lo, l.x_hi, l.right - l.left, kLabelSpacing)) {
+    const float px = l.project(t.value, axis_value(l.y_lo, l.y_scale)).x;
+    canvas.rect(px - 0.5f, l.top, px + 0.5f, l.bottom, t.labelled ? kGridColor : kMinorGridColor);
+    if (!t.labelled) continue;
     canvas.rect(px - 0.5f, l.bottom, px + 0.5f, l.bottom + kTick, kAxisColor);
-    canvas.text(axis_label(x, AxisUnit::plain), px, l.bottom + kTick + 4 + 0.5f * small, TextSize::small,
+    canvas.text(tick_label(t.value, chart.x.unit), px, l.bottom + kTick + 4 + 0.5f * small, TextSize::small,
                 kTextColor, Align::center);
   }
-  for (double y : log_ticks(l.log_y_lo, l.log_y_hi)) {
-    const float py = l.project(std::pow(10.0, l.log_x_lo), y).y;
-    canvas.rect(l.left, py - 0.5f, l.right, py + 0.5f, kGridColor);
+  for (const AxisTick& t : ticks_of(chart.y, l.y_lo, l.y_hi, l.bottom - l.top, kYLabelSpacing)) {
+    const float py = l.project(axis_value(l.x_lo, l.x_scale), t.value).y;
+    canvas.rect(l.left, py - 0.5f, l.right, py + 0.5f, t.labelled ? kGridColor : kMinorGridColor);
+    if (!t.labelled) continue;
     canvas.rect(l.left - kTick, py - 0.5f, l.left, py + 0.5f, kAxisColor);
-    canvas.text(axis_label(y, chart.y_unit), l.left - kTick - 4, py, TextSize::small, kTextColor, Align::right);
+    canvas.text(tick_label(t.value, chart.y.unit), l.left - kTick - 4, py, TextSize::small, kTextColor, Align::right);
   }
   canvas.rect(l.left - 1, l.top - 1, l.right + 1, l.top, kAxisColor);
   canvas.rect(l.left - 1, l.bottom, l.right + 1, l.bottom + 1, kAxisColor);
   canvas.rect(l.left - 1, l.top, l.left, l.bottom, kAxisColor);
   canvas.rect(l.right, l.top, l.right + 1, l.bottom, kAxisColor);
   const float mid_x = 0.5f * (l.left + l.right);
-  canvas.text(chart.title, mid_x, 0.5f * l.top, TextSize::large, kTextColor, Align::center);
-  canvas.text(chart.x_label, mid_x, l.bottom + kTick + 12 + 1.5f * small, TextSize::small, kTextColor,
+  canvas.text(chart.title, mid_x, l.frame.y0 + 0.5f * (l.top - 14 - l.frame.y0), TextSize::large, kTextColor,
               Align::center);
-  canvas.text(chart.y_label, 8, l.top - 14, TextSize::small, kTextColor);
+  canvas.text(chart.x.label, mid_x, l.bottom + kTick + 12 + 1.5f * small, TextSize::small, kTextColor, Align::center);
+  canvas.text(chart.y.label, l.frame.x0 + 8, l.top - 12, TextSize::small, kTextColor);
 }
 
 void draw_legend(Canvas& canvas, const LineChart& chart, const LineChartLayout& l) {
-  float text_width = 0;
-  for (const auto& s : chart.series) text_width = std::max(text_width, Font::instance().width(s.label, TextSize::small));
-  const float x0 = l.legend_x, y0 = l.legend_y;
-  const float x1 = x0 + 8 + kSwatch + 6 + text_width + 8;
-  const float y1 = y0 + 4 + l.legend_row_height * chart.series.size() + 4;
+  const float x0 = l.legend_x, y0 = l.legend_y, x1 = x0 + l.legend_width;
+  const float y1 = y0 + 8 + l.legend_row_height * static_cast<float>(chart.series.size() + l.legend_title_rows);
   canvas.rect(x0, y0, x1, y1, kAxisColor);
   canvas.rect(x0 + 1, y0 + 1, x1 - 1, y1 - 1, kWhite);
+  if (l.legend_title_rows > 0) {
+    canvas.text(chart.legend_title, x0 + 8, y0 + 4 + 0.5f * l.legend_row_height, TextSize::small, kTextColor);
+  }
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
     const LineSeries& s = chart.series[i];
-    const float y = y0 + 4 + l.legend_row_height * (i + 0.5f);
-    canvas.line({x0 + 8, y}, {x0 + 8 + kSwatch, y}, kLineWidth, s.color);
-    const float mx = x0 + 8 + 0.5f * kSwatch;
-    canvas.rect(mx - 0.5f * kMarker, y - 0.5f * kMarker, mx + 0.5f * kMarker, y + 0.5f * kMarker, s.color);
+    const float y = l.legend_row_y(i);
+    stroke_series(canvas, {{x0 + 8, y}, {x0 + 8 + kSwatch, y}}, s.style);
+    draw_marker(canvas, {x0 + 8 + 0.5f * kSwatch, y}, s.style);
     canvas.text(s.label, x0 + 8 + kSwatch + 6, y, TextSize::small, kTextColor);
   }
 }
@@ -108,20 +92,24 @@ void draw_legend(Canvas& canvas, const LineChart& chart, const LineChartLayout& 
 }  // namespace
 
 Point LineChartLayout::project(double x, double y) const {
-  const double tx = (std::log10(x) - log_x_lo) / (log_x_hi - log_x_lo);
-  const double ty = (std::log10(y) - log_y_lo) / (log_y_hi - log_y_lo);
+  const double tx = (axis_coordinate(x, x_scale) - x_lo) / (x_hi - x_lo);
+  const double ty = (axis_coordinate(y, y_scale) - y_lo) / (y_hi - y_lo);
   return {static_cast<float>(left + tx * (right - left)), static_cast<float>(bottom - ty * (bottom - top))};
 }
 
-LineChartLayout layout_line_chart(const LineChart& chart, int width, int height) {
-  validate_size("width", width, false);
-  validate_size("height", height, false);
-  double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0, y_lo = x_lo, y_hi = 0;
+float LineChartLayout::legend_row_y(std::size_t series) const {
+  return legend_y + 4 + legend_row_height * (static_cast<float>(series + legend_title_rows) + 0.5f);
+}
+
+LineChartLayout layout_line_chart(const LineChart& chart, Box frame) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double x_lo = kInf, x_hi = -kInf, y_lo = kInf, y_hi = -kInf;
+  auto fits = [](double v, AxisScale scale) { return std::isfinite(v) && (scale == AxisScale::linear || v > 0); };
   for (const auto& s : chart.series) {
     if (s.x.size() != s.y.size()) throw std::invalid_argument("series '" + s.label + "': x and y differ in length");
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      if (!(std::isfinite(s.x[i]) && s.x[i] > 0 && std::isfinite(s.y[i]) && s.y[i] > 0)) {
-        throw std::invalid_argument("series '" + s.label + "': values must be finite and positive on log axes");
+      if (!fits(s.x[i], chart.x.scale) || !fits(s.y[i], chart.y.scale)) {
+        throw std::invalid_argument("series '" + s.label + "': values must be finite, and positive on log axes");
       }
       x_lo = std::min(x_lo, s.x[i]), x_hi = std::max(x_hi, s.x[i]);
       y_lo = std::min(y_lo, s.y[i]), y_hi = std::max(y_hi, s.y[i]);
@@ -129,36 +117,51 @@ LineChartLayout layout_line_chart(const LineChart& chart, int width, int height)
   }
   if (!(x_lo <= x_hi)) throw std::invalid_argument("a line chart needs at least one point");
   LineChartLayout l;
-  l.width = width;
-  l.height = height;
+  l.frame = frame;
+  l.x_scale = chart.x.scale;
+  l.y_scale = chart.y.scale;
   const float small = Font::instance().pixel_height(TextSize::small);
-  l.left = 70;
-  l.right = static_cast<float>(width) - 20;
-  l.top = 50;
-  l.bottom = static_cast<float>(height) - (kTick + 24 + 2 * small);
-  std::tie(l.log_x_lo, l.log_x_hi) = log_range(x_lo, x_hi);
-  std::tie(l.log_y_lo, l.log_y_hi) = log_range(y_lo, y_hi);
-  l.legend_x = l.left + 10;
-  l.legend_y = l.top + 10;
-  l.legend_row_height = small + 8;
+  l.legend_row_height = small + 7;
+  l.legend_title_rows = chart.legend_title.empty() ? 0 : 1;
+  l.legend_width = 8 + kSwatch + 6 + legend_text_width(chart) + 8;
+  l.left = frame.x0 + 70;
+  l.right = frame.x1 - 20;
+  l.top = frame.y0 + 50;
+  l.bottom = frame.y1 - (kTick + 24 + 2 * small);
+  if (chart.legend == LegendPlace::right) {
+    // The legend gets its column unless the plot would keep less than a third of the frame.
+    l.right = std::max(l.left + (frame.x1 - frame.x0) / 3, frame.x1 - 16 - l.legend_width - 12);
+    l.legend_x = l.right + 12;
+    l.legend_y = l.top;
+  } else {
+    l.legend_x = l.left + 10;
+    l.legend_y = l.top + 10;
+  }
+  l.right = std::max(l.right, l.left + 1);
+  l.bottom = std::max(l.bottom, l.top + 1);
+  std::tie(l.x_lo, l.x_hi) = axis_range(x_lo, x_hi, chart.x.scale);
+  std::tie(l.y_lo, l.y_hi) = axis_range(y_lo, y_hi, chart.y.scale);
   return l;
+}
+
+LineChartLayout layout_line_chart(const LineChart& chart, int width, int height) {
+  validate_size("width", width, false);
+  validate_size("height", height, false);
+  return layout_line_chart(chart, Box{0, 0, static_cast<float>(width), static_cast<float>(height)});
 }
 
 void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayout& l) {
   draw_axes(canvas, chart, l);
   // All polylines first, then all markers, so that a marker's pixels are its series' color.
   for (const auto& s : chart.series) {
-    for (std::size_t i = 1; i < s.x.size(); ++i) {
-      canvas.line(l.project(s.x[i - 1], s.y[i - 1]), l.project(s.x[i], s.y[i]), kLineWidth, s.color);
-    }
+    std::vector<Point> points;
+    for (std::size_t i = 0; i < s.x.size(); ++i) points.push_back(l.project(s.x[i], s.y[i]));
+    stroke_series(canvas, points, s.style);
   }
   for (const auto& s : chart.series) {
-    for (std::size_t i = 0; i < s.x.size(); ++i) {
-      const Point p = l.project(s.x[i], s.y[i]);
-      canvas.rect(p.x - 0.5f * kMarker, p.y - 0.5f * kMarker, p.x + 0.5f * kMarker, p.y + 0.5f * kMarker, s.color);
-    }
+    for (std::size_t i = 0; i < s.x.size(); ++i) draw_marker(canvas, l.project(s.x[i], s.y[i]), s.style);
   }
-  draw_legend(canvas, chart, l);
+  if (chart.legend != LegendPlace::none) draw_legend(canvas, chart, l);
 }
 
 std::vector<std::uint8_t> line_chart_png(const LineChart& chart, int width, int height) {
@@ -178,12 +181,6 @@ std::vector<std::uint8_t> line_chart_png(const LineChart& chart, int width, int 
     rgb = painter.paint(canvas);
   }
   return encode_png(rgb, width, height, RowOrder::bottom_up);
-}
-
-Color series_color(std::size_t index) {
-  static constexpr Color kColors[] = {{0, 114, 178, 255},  {213, 94, 0, 255},   {0, 158, 115, 255},
-                                      {204, 121, 167, 255}, {230, 159, 0, 255}, {86, 180, 233, 255}};
-  return kColors[index % std::size(kColors)];
 }
 
 }  // namespace lienewton::render

@@ -1,48 +1,66 @@
 #pragma once
-// A log-log line chart: one colored polyline with square markers per series, decade (and 2, 5) ticks with
-// labels and light grid lines, axis titles, a title and a legend. Used by bench/perf_plot.cpp for the
-// time-per-iteration vs N figure of docs/performance.md.
+// A line chart: a polyline with markers per series in its SeriesStyle, log or linear axes with ticks, light
+// grid lines and labels, a title and a legend (inside the plot's top-left corner or in a column to its right).
+// Used by the work-precision and residual scenes and by bench/perf_plot.cpp (docs/performance.md).
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "render/canvas.hpp"
+#include "render/log_axis.hpp"
+#include "render/series_style.hpp"
 
 namespace lienewton::render {
 
-struct LineSeries {
+enum class AxisScale { log, linear };
+
+struct ChartAxis {
   std::string label;
-  Color color;
-  std::vector<double> x, y;  // same length, all > 0 (log axes)
+  AxisScale scale = AxisScale::log;
+  AxisUnit unit = AxisUnit::plain;
+  double min_step = 0;  // linear axes: the smallest tick step (1 for counts)
 };
 
-enum class AxisUnit { plain, seconds };  // seconds: tick labels as "10 us", "1 ms", "1 s"
+struct LineSeries {
+  std::string label;
+  SeriesStyle style;
+  std::vector<double> x, y;  // same length; finite, and positive on a log axis; may be empty (legend only)
+};
+
+enum class LegendPlace { none, inside, right };
 
 struct LineChart {
   std::string title;
-  std::string x_label, y_label;
-  AxisUnit y_unit = AxisUnit::plain;
+  ChartAxis x, y;
   std::vector<LineSeries> series;
+  std::string legend_title;  // drawn above the legend's rows when not empty
+  LegendPlace legend = LegendPlace::inside;
 };
 
-// Where everything goes for a chart of a given size: the plot box and the decades it spans.
+// A rectangle in pixels, top-down.
+struct Box {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// Where everything goes for a chart drawn in a frame: the plot box and the ends of its axes.
 struct LineChartLayout {
-  int width = 0, height = 0;
-  float left = 0, top = 0, right = 0, bottom = 0;  // the plot box, pixels, top-down
-  double log_x_lo = 0, log_x_hi = 1, log_y_lo = 0, log_y_hi = 1;  // log10 of the axis ends
-  float legend_x = 0, legend_y = 0, legend_row_height = 0;
-  Point project(double x, double y) const;  // data (x, y > 0) -> pixel centre
+  Box frame;
+  float left = 0, top = 0, right = 0, bottom = 0;  // the plot box
+  AxisScale x_scale = AxisScale::log, y_scale = AxisScale::log;
+  double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;  // axis ends: log10 of the value on a log axis
+  float legend_x = 0, legend_y = 0, legend_row_height = 0, legend_width = 0;
+  int legend_title_rows = 0;
+  Point project(double x, double y) const;  // data -> pixel centre
+  float legend_row_y(std::size_t series) const;  // vertical middle of a series' legend row
 };
 
 // Throws std::invalid_argument when there is no point, when x and y differ in length, or when a value is
-// not finite and positive; width and height as Renderer's (validate_size, no automatic size).
+// not finite (or not positive on a log axis). The int form checks width and height as Renderer does.
+LineChartLayout layout_line_chart(const LineChart& chart, Box frame);
 LineChartLayout layout_line_chart(const LineChart& chart, int width, int height);
 void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayout& layout);
 
 // The chart as a PNG, drawn on a GL context of its own (for command-line tools that draw one picture).
 std::vector<std::uint8_t> line_chart_png(const LineChart& chart, int width, int height);
-
-// Distinct series colors (Okabe-Ito), cycled.
-Color series_color(std::size_t index);
 
 }  // namespace lienewton::render

@@ -134,4 +134,13 @@ std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& s
   return encode_png(rgb, layout.width, layout.height, RowOrder::bottom_up);
 }
 
+std::vector<unsigned char> Renderer::figure_png(const Figure& figure) {
+  validate_size("width", figure.width, false);
+  validate_size("height", figure.height, false);
+  Canvas canvas(figure.width, figure.height, kWhite);
+  draw_figure(canvas, figure);
+  const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
+  return encode_png(rgb, figure.width, figure.height, RowOrder::bottom_up);
+}
+
 }  // namespace lienewton::render

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/sweep.hpp"
+#include "render/figure.hpp"
 #include "render/options.hpp"
 #include "render/render_unavailable.hpp"
 
@@ -28,6 +29,8 @@ class Renderer {
   std::vector<unsigned char> frames_png(const std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start,
                                         const FramesOptions& options);
   std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options);
+  // Line-chart figures (work_precision_scene.hpp, residuals_scene.hpp); throws as layout_line_chart does.
+  std::vector<unsigned char> figure_png(const Figure& figure);
 
  private:
   class Pool;

@@ -15,10 +15,12 @@ using testing::DecodedImage;
 // Two series on log-log axes, far enough apart that no marker touches another series' line.
 LineChart two_series() {
   // Designated initializers rather than assignments: g++ 12 warns falsely (-Wrestrict) on string = "literal".
-  LineChart chart{.title = "time per iteration", .x_label = "N", .y_label = "time", .y_unit = AxisUnit::seconds,
-                  .series = {}};
-  chart.series.push_back({"exact", series_color(0), {3, 8, 16, 32, 64, 100}, {1e-6, 1e-5, 6e-5, 4e-4, 3e-3, 1.1e-2}});
-  chart.series.push_back({"finite-difference", series_color(1), {3, 8, 16, 32, 64, 100},
+  LineChart chart{.title = "time per iteration",
+                  .x = {.label = "N", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0},
+                  .y = {.label = "time", .scale = AxisScale::log, .unit = AxisUnit::seconds, .min_step = 0},
+                  .series = {}, .legend_title = {}, .legend = LegendPlace::inside};
+  chart.series.push_back({"exact", series_style(0), {3, 8, 16, 32, 64, 100}, {1e-6, 1e-5, 6e-5, 4e-4, 3e-3, 1.1e-2}});
+  chart.series.push_back({"finite-difference", series_style(1), {3, 8, 16, 32, 64, 100},
                           {3e-6, 1e-3, 2e-2, 0.4, 2.0, 9.0}});
   return chart;
 }
@@ -36,7 +38,7 @@ TEST(LineChart, MarkersSitAtTheProjectedPointsInTheirSeriesColor) {
       EXPECT_LE(p.x, layout.right);
       EXPECT_GE(p.y, layout.top);
       EXPECT_LE(p.y, layout.bottom);
-      EXPECT_EQ(image.at(static_cast<int>(p.x), static_cast<int>(p.y)), s.color)
+      EXPECT_EQ(image.at(static_cast<int>(p.x), static_cast<int>(p.y)), s.style.color)
           << s.label << " point " << i << " at (" << p.x << ", " << p.y << ")";
     }
   }
@@ -46,6 +48,11 @@ TEST(LineChart, ProjectionIsLogarithmic) {
   const LineChartLayout layout = layout_line_chart(two_series(), 640, 420);
   // Equal ratios are equal distances on both axes.
   EXPECT_NEAR(layout.project(10, 1).x - layout.project(1, 1).x, layout.project(100, 1).x - layout.project(10, 1).x, 1e-3);
+  // A linear axis: equal differences are equal distances.
+  LineChart linear = two_series();
+  linear.x.scale = AxisScale::linear;
+  const LineChartLayout lin = layout_line_chart(linear, 640, 420);
+  EXPECT_NEAR(lin.project(20, 1).x - lin.project(10, 1).x, lin.project(30, 1).x - lin.project(20, 1).x, 1e-3);
   EXPECT_NEAR(layout.project(10, 1e-4).y - layout.project(10, 1e-3).y,
               layout.project(10, 1e-3).y - layout.project(10, 1e-2).y, 1e-3);
   EXPECT_LT(layout.project(10, 1e-2).y, layout.project(10, 1e-3).y);  // larger values higher up
@@ -56,11 +63,11 @@ TEST(LineChart, LegendShowsEverySeries) {
   const DecodedImage image = decode_png(line_chart_png(chart, 640, 420));
   const LineChartLayout layout = layout_line_chart(chart, 640, 420);
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
-    const int y = static_cast<int>(layout.legend_y + 4 + layout.legend_row_height * (i + 0.5f));
+    const int y = static_cast<int>(layout.legend_row_y(i));
     const int x = static_cast<int>(layout.legend_x + 8);
     // The line sample in the series' color, then its label (text pixels) to the right.
-    EXPECT_GT(image.count_not(kWhite, x, y - 2, x + 22, y + 3), 20) << chart.series[i].label;
-    const int label_x = x + 22 + 6;
+    EXPECT_GT(image.count_not(kWhite, x, y - 2, x + 28, y + 3), 20) << chart.series[i].label;
+    const int label_x = x + 28 + 6;
     EXPECT_GT(image.count_not(kWhite, label_x, y - 6, label_x + 60, y + 6), 20) << chart.series[i].label;
   }
 }
