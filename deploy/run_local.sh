@@ -34,7 +34,9 @@ free_port() { python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",
 upstreams=""
 for i in $(seq "$replicas"); do
   p=$(free_port)
-  "$server_bin" --host 127.0.0.1 --port "$p" --web-root "$root/web" >"$dir/replica-$i.log" 2>&1 &
+  # Every connection comes from nginx's address: the per-client cap is nginx's job (limit_conn) here.
+  "$server_bin" --host 127.0.0.1 --port "$p" --web-root "$root/web" --max-connections-per-client 512 \
+    >"$dir/replica-$i.log" 2>&1 &
   pids+=($!)
   upstreams+="    server 127.0.0.1:$p max_fails=3 fail_timeout=5s;\n"
   echo "run_local: replica $i on 127.0.0.1:$p (log $dir/replica-$i.log)"

@@ -1,5 +1,6 @@
 #include "server/api_handlers.hpp"
 
+#include <cstdio>
 #include <set>
 
 #include "core/integrate.hpp"
@@ -41,6 +42,13 @@ namespace {
 // A GET form carries its request as query parameters; list_fields are array-valued in the JSON request.
 json request_json(const HttpRequest& req, const std::set<std::string>& list_fields = {}) {
   return req.method == "POST" ? parse_body(req.body) : query_to_json(req.params, list_fields);
+}
+
+// 30 -> "30 s", 2.5 -> "2.5 s".
+std::string format_seconds(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", seconds);
+  return buf;
 }
 
 HttpResponse json_response(std::string body, int status = 200) {
@@ -90,8 +98,8 @@ void ApiHandlers::throw_stopped(const StopCheck& stop) const {
       throw ApiError(499, "client_gone", "", "the client closed the connection");
     default:
       throw ApiError(504, "deadline_exceeded", "",
-                     "the request took longer than the server's limit of " +
-                         std::to_string(options_.request_timeout) + " s and was cancelled");
+                     "the request took longer than the server's limit of " + format_seconds(options_.request_timeout) +
+                         " and was cancelled");
   }
 }
 
@@ -177,8 +185,11 @@ HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
   return render(request_json(req, {"methods", "n", "h"}), false);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
+// Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).
 HttpResponse ApiHandlers::readyz(const HttpRequest&) {
-  return draining_.load() ? json_response(R"({"status":"draining"})", 503) : json_response(R"({"status":"ok"})");
+  if (draining_.load()) return json_response(R"({"status":"draining"})", 503);
+  if (slots_in_use_.load() >= options_.effective_max_streams()) return json_response(R"({"status":"saturated"})", 503);
+  return json_response(R"({"status":"ok"})");
 }
 HttpResponse ApiHandlers::metrics(const HttpRequest&) {
   HttpResponse res;
@@ -208,7 +219,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) 
   auto stop = std::make_shared<StopCheck>(make_stop());
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
   res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
-  res.stream = [slot, job = std::move(job), stop, sse](const ChunkSink& sink) {
+  res.stream = [slot, job = std::move(job), stop, sse, metrics = &metrics_](const ChunkSink& sink) {
     auto write = [&](const char* kind, json record) {
       // "type" first, for people reading the stream; the rest keeps the result's field order.
       std::string line = dump(record);
@@ -235,6 +246,8 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) 
       kind = "error";
       terminal = error_body("internal_error", "", "internal error");
     }
+    // The status line (200) went out with the first record: the metrics count how the stream ended.
+    metrics->stream_ended(kind == std::string("result") ? "result" : terminal["error"].value("code", "error"));
     return stop->reason() != StopReason::client_gone && write(kind, std::move(terminal));
   };
   return res;

@@ -1,8 +1,10 @@
 #pragma once
 // What a handler sees of HTTP and what it gives back: a small request value in, a response value (or a record
 // stream) out. Only the transport (http_server.cpp) translates these to and from cpp-httplib.
+#include <atomic>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -23,6 +25,8 @@ struct HttpRequest {
   HeaderMap headers;
   std::vector<std::pair<long long, long long>> ranges;  // parsed Range header; -1 marks an open end
   std::string body;
+  // Set by the transport when the client hangs up while the request is served (null: never).
+  std::shared_ptr<const std::atomic<bool>> client_gone;
 
   bool has_header(const std::string& name) const { return headers.count(name) > 0; }
   std::size_t header_count(const std::string& name) const { return headers.count(name); }

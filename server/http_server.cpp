@@ -2,12 +2,17 @@
 
 #include "server/httplib_include.hpp"
 
+#include <poll.h>
+#include <sys/socket.h>
+
 #include <chrono>
+#include <cstring>
 #include <ctime>
 #include <regex>
 #include <stdexcept>
 
 #include "server/api_handlers.hpp"
+#include "server/connection_reactor.hpp"
 #include "server/http_errors.hpp"
 #include "server/request_limits.hpp"
 #include "server/routes.hpp"
@@ -27,6 +32,92 @@ struct RequestContext {
   std::string route;
 };
 thread_local RequestContext t_context;
+// The connection request the worker thread is serving (set around process_request), and whether the
+// connection must close after this answer (a refused request).
+thread_local const ConnectionRequest* t_connection = nullptr;
+thread_local bool t_close_after = false;
+// Whether pre-routing saw the request; a request cpp-httplib could not parse (400, 414) ends its connection.
+thread_local bool t_routed = false;
+
+// The methods metrics may name; anything else is counted as "other" (label values from a fixed set).
+std::string method_label(const std::string& method) {
+  static const char* const kKnown[] = {"GET", "HEAD", "POST", "PUT", "DELETE", "OPTIONS", "PATCH", "CONNECT", "TRACE"};
+  for (const char* m : kKnown) {
+    if (method == m) return method;
+  }
+  return method.empty() ? "-" : "other";
+}
+
+// cpp-httplib's accept loop hands each socket to the task queue; this one runs the hand-over (to the
+// reactor) on the accept thread itself.
+class InlineTaskQueue : public httplib::TaskQueue {
+ public:
+  void enqueue(std::function<void()> fn) override { fn(); }
+  void shutdown() override {}
+};
+
+// cpp-httplib's view of one complete request: reads come from the bytes the reactor collected (and end there,
+// so nothing past this request can be read), writes go to the socket. Writes shorter than kCoalesce bytes
+// (status line, header lines) are gathered and sent with the next larger write or at the end.
+class RequestStream : public httplib::Stream {
+ public:
+  static constexpr std::size_t kCoalesce = 64;
+  RequestStream(const ConnectionRequest& request, int write_timeout_ms)
+      : request_(request), write_timeout_ms_(write_timeout_ms) {}
+
+  bool is_readable() const override { return read_pos_ < request_.bytes.size(); }
+  bool is_writable() const override { return !failed_ && !request_.client_gone->load() && wait_writable(); }
+  ssize_t read(char* ptr, std::size_t size) override {
+    const std::size_t n = std::min(size, request_.bytes.size() - read_pos_);
+    std::memcpy(ptr, request_.bytes.data() + read_pos_, n);
+    read_pos_ += n;
+    return static_cast<ssize_t>(n);
+  }
+  ssize_t write(const char* ptr, std::size_t size) override {
+    pending_.append(ptr, size);
+    if (size < kCoalesce) return static_cast<ssize_t>(size);
+    return flush() ? static_cast<ssize_t>(size) : -1;
+  }
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    ip = request_.remote_ip;
+    port = request_.remote_port;
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    ip = request_.local_ip;
+    port = request_.local_port;
+  }
+  socket_t socket() const override { return request_.fd; }
+
+  // Sends what is gathered; false when the client is gone or stopped reading for write_timeout.
+  bool flush() {
+    std::string_view rest = pending_;
+    while (!rest.empty() && !failed_) {
+      const ssize_t n = ::send(request_.fd, rest.data(), rest.size(), MSG_NOSIGNAL);
+      if (n > 0) {
+        rest.remove_prefix(static_cast<std::size_t>(n));
+      } else if (n < 0 && errno == EINTR) {
+        continue;
+      } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK) && wait_writable()) {
+        continue;
+      } else {
+        failed_ = true;
+      }
+    }
+    pending_.clear();
+    return !failed_;
+  }
+
+ private:
+  bool wait_writable() const {
+    pollfd p{request_.fd, POLLOUT, 0};
+    return ::poll(&p, 1, write_timeout_ms_) == 1 && !(p.revents & (POLLERR | POLLHUP));
+  }
+  const ConnectionRequest& request_;
+  int write_timeout_ms_;
+  std::size_t read_pos_ = 0;
+  std::string pending_;
+  bool failed_ = false;
+};
 
 std::string regex_escape(const std::string& path) {
   static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
@@ -51,6 +142,7 @@ HttpRequest to_exchange(const httplib::Request& req) {
   r.headers = {req.headers.begin(), req.headers.end()};
   r.ranges.assign(req.ranges.begin(), req.ranges.end());
   r.body = req.body;
+  if (t_connection) r.client_gone = t_connection->client_gone;
   return r;
 }
 
@@ -73,20 +165,75 @@ void send(HttpResponse answer, httplib::Response& res) {
   res.set_chunked_content_provider(answer.content_type, std::move(provider));
 }
 
-// The request is a local of cpp-httplib's process_request; asking for Connection: close makes it close the
-// socket after answering, so an unread (refused) body is never parsed as the next request.
+// A refused request ends its connection: cpp-httplib writes Connection: close when the request asks for it
+// (the request is a local of its process_request), and the worker then closes the socket.
 void close_after_response(const httplib::Request& req) {
   auto& mutable_req = const_cast<httplib::Request&>(req);
   mutable_req.headers.erase("Connection");
   mutable_req.headers.emplace("Connection", "close");
+  t_close_after = true;
 }
 
 }  // namespace
 
+// cpp-httplib's server with its connection handling replaced: process_and_close_socket (virtual in 0.11.4)
+// gives each accepted socket to the reactor, and serve() runs cpp-httplib's request processing over one
+// complete request.
+class ReactorServer : public httplib::Server {
+ public:
+  std::function<void(int fd)> adopt;
+
+  // cpp-httplib listens with a backlog of 5: a burst of connects would wait for SYN retries (seconds).
+  // listen() again on the bound socket only raises the backlog.
+  void widen_backlog(int backlog) { ::listen(svr_sock_, backlog); }
+
+  // True when the connection may carry another request.
+  bool serve(const ConnectionRequest& request, bool close_connection, int write_timeout_ms) {
+    RequestStream stream(request, write_timeout_ms);
+    t_connection = &request;
+    t_close_after = false;
+    t_routed = false;
+    bool client_closes = false;
+    const bool ok = process_request(stream, close_connection, client_closes, nullptr);
+    const bool sent = stream.flush();
+    t_connection = nullptr;
+    return ok && sent && t_routed && !client_closes && !close_connection && !t_close_after;
+  }
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    adopt(sock);
+    return true;
+  }
+};
+
 HttpServer::HttpServer(ServerOptions options)
-    : options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
+    : options_(std::move(options)), server_(std::make_unique<ReactorServer>()) {
   api_ = std::make_unique<ApiHandlers>(options_, metrics_, draining_, abort_work_);
   install();
+  ReactorLimits limits;
+  limits.max_header_bytes = options_.max_header_bytes;
+  limits.max_headers = static_cast<std::size_t>(options_.max_headers);
+  limits.max_body = options_.max_body;
+  limits.request_read_timeout = options_.request_read_timeout;
+  limits.keep_alive_timeout = options_.keep_alive_seconds;
+  limits.max_connections = options_.max_connections;
+  limits.max_connections_per_client = options_.max_connections_per_client;
+  limits.workers = options_.threads;
+  limits.health_workers = 2;
+  ConnectionReactor::Routing routing;
+  routing.is_health = [](std::string_view path) { return path == "/livez" || path == "/readyz"; };
+  // API answers are never byte ranges; static files keep theirs.
+  routing.ignores_range = [](std::string_view path) { return path != "/" && path_is_routed(std::string(path)); };
+  auto serve = [this](const ConnectionRequest& request) {
+    return server_->serve(request, draining_.load(), 5000);
+  };
+  auto refused = [this](int status, std::string_view code) {
+    metrics_.rejected(std::string(code));
+    metrics_.request_finished("unparsed", "-", status, 0.0);
+  };
+  reactor_ = std::make_unique<ConnectionReactor>(limits, std::move(routing), std::move(serve), std::move(refused));
+  server_->adopt = [this](int fd) { reactor_->adopt(fd); };
 }
 
 HttpServer::~HttpServer() {
@@ -96,8 +243,12 @@ HttpServer::~HttpServer() {
 
 void HttpServer::install() {
   auto& svr = *server_;
-  const int threads = options_.threads;
-  svr.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  svr.new_task_queue = [] { return new InlineTaskQueue(); };
+  // SO_REUSEADDR only: cpp-httplib's default adds SO_REUSEPORT, which lets a second server share the port.
+  svr.set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   svr.set_payload_max_length(options_.max_body);
   svr.set_read_timeout(5, 0);
   svr.set_write_timeout(5, 0);
@@ -108,16 +259,13 @@ void HttpServer::install() {
 
   svr.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
     t_context = RequestContext{true, Clock::now(), "", ""};
+    t_routed = true;
     const std::string given = req.get_header_value("X-Request-Id");
     t_context.id = valid_request_id(given) ? given : generate_request_id();
     res.set_header("X-Request-Id", t_context.id);
 
     const RouteSpec* route = find_route(req.method, req.path);
     t_context.route = route ? route->path : (path_is_routed(req.path) ? req.path : "static");
-    if (route && route->path != "/") {
-      // API answers are never byte ranges: without this cpp-httplib would slice the JSON body.
-      const_cast<httplib::Request&>(req).ranges.clear();
-    }
     auto refuse = [&](int status, const std::string& code, const std::string& message) {
       metrics_.rejected(code);
       close_after_response(req);
@@ -138,6 +286,13 @@ void HttpServer::install() {
     const BodyKind kind = route ? route->body : BodyKind::none;
     if (auto rejection = check_body_rules(to_exchange(req), kind, options_.max_body)) {
       return refuse(rejection->status, rejection->code, rejection->message);
+    }
+    if (kind == BodyKind::json && req.get_header_value("Content-Type").find("application/x-www-form-urlencoded") == 0) {
+      // What curl -d sends. The body is read as JSON all the same; relabelled here (before cpp-httplib reads
+      // the body) because cpp-httplib refuses form bodies above 8192 bytes and parses them into parameters.
+      auto& mutable_req = const_cast<httplib::Request&>(req);
+      mutable_req.headers.erase("Content-Type");
+      mutable_req.headers.emplace("Content-Type", "application/json");
     }
     if (draining_.load() && !(route && route->serves_while_draining)) {
       res.set_header("Retry-After", "1");
@@ -189,7 +344,7 @@ void HttpServer::install() {
     const std::string route = known ? t_context.route : "unparsed";
     const std::string id = known ? t_context.id : generate_request_id();
     t_context.active = false;
-    metrics_.request_finished(route, req.method.empty() ? "-" : req.method, res.status, seconds);
+    metrics_.request_finished(route, method_label(req.method), res.status, seconds);
     if (options_.log) {
       json line{{"time", utc_now()},    {"request_id", id},  {"method", req.method},
                 {"path", req.path},     {"route", route},    {"status", res.status},
@@ -217,10 +372,12 @@ int HttpServer::bind() {
     if (port_ <= 0) throw std::runtime_error("cannot bind " + options_.host + " to any port");
   } else {
     if (!server_->bind_to_port(options_.host, options_.port)) {
-      throw std::runtime_error("cannot bind " + options_.host + ":" + std::to_string(options_.port));
+      throw std::runtime_error("cannot listen on " + options_.host + ":" + std::to_string(options_.port) +
+                               " (the port is in use by another process, or the address is not available)");
     }
     port_ = options_.port;
   }
+  server_->widen_backlog(1024);
   return port_;
 }
 
@@ -249,6 +406,7 @@ void HttpServer::drain_and_stop(double limit_seconds) {
 void HttpServer::stop() {
   if (server_ && server_->is_running()) server_->stop();
   if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+  if (reactor_) reactor_->stop();
 }
 
 }  // namespace lienewton::service

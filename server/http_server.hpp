@@ -1,7 +1,8 @@
 #pragma once
-// lienewton's HTTP service on cpp-httplib: routes from the route table, body/header hardening before any body
-// is read, bounded long work (work slots, deadlines, client-disconnect cancellation), NDJSON/SSE streams,
-// metrics, one JSON log line per request, and a drain for SIGTERM.
+// lienewton's HTTP service: cpp-httplib parses, routes and writes each request, but connections belong to the
+// ConnectionReactor (server/connection_reactor.hpp), which hands a worker one complete request at a time.
+// Routes from the route table, body/header hardening, bounded long work (work slots, deadlines, client-
+// disconnect cancellation), NDJSON/SSE streams, metrics, one JSON log line per request, a drain for SIGTERM.
 #include <atomic>
 #include <memory>
 #include <string>
@@ -15,13 +16,14 @@
 #include "server/server_options.hpp"
 
 namespace httplib {
-class Server;
 struct Request;
 }  // namespace httplib
 
 namespace lienewton::service {
 
 class ApiHandlers;
+class ConnectionReactor;
+class ReactorServer;
 
 class HttpServer {
  public:
@@ -56,7 +58,8 @@ class HttpServer {
   Metrics metrics_;
   std::atomic<bool> draining_{false};
   std::atomic<bool> abort_work_{false};
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<ReactorServer> server_;
+  std::unique_ptr<ConnectionReactor> reactor_;
   std::unique_ptr<ApiHandlers> api_;
   std::vector<std::pair<std::string, std::string>> registered_;
   std::thread thread_;

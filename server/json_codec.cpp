@@ -188,6 +188,10 @@ std::string error_code(const RequestError& error) {
 
 json parse_body(std::string_view text) {
   if (text.empty()) throw FieldError("malformed_json", "", "the request body is empty; send a JSON object");
+  // nlohmann's parser stops at a NUL byte and accepts what came before it.
+  if (text.find('\0') != std::string_view::npos) {
+    throw FieldError("malformed_json", "", "the request body holds a NUL byte");
+  }
   std::vector<std::set<std::string>> keys;  // one set per open object
   json::parser_callback_t check = [&](int depth, json::parse_event_t event, json& parsed) {
     if (depth > kMaxDepth) throw FieldError("malformed_json", "", "the request body is nested too deeply");

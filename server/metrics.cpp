@@ -20,6 +20,18 @@ std::string number(double v) {
   return buf;
 }
 
+// A label value per the text exposition format: backslash, double quote and line feed escaped.
+std::string escape(const std::string& value) {
+  std::string out;
+  for (char c : value) {
+    if (c == '\\') out += "\\\\";
+    else if (c == '"') out += "\\\"";
+    else if (c == '\n') out += "\\n";
+    else out += c;
+  }
+  return out;
+}
+
 std::string label_join(const std::string& a, const std::string& b) {
   if (a.empty()) return b;
   return a + "," + b;
@@ -71,6 +83,11 @@ void Metrics::rejected(const std::string& reason) {
   ++rejected_[reason];
 }
 
+void Metrics::stream_ended(const std::string& outcome) {
+  std::lock_guard lock(mutex_);
+  ++stream_outcomes_[outcome];
+}
+
 std::uint64_t Metrics::solves(const std::string& status) const {
   std::lock_guard lock(mutex_);
   auto it = solves_.find(status);
@@ -84,16 +101,18 @@ std::string Metrics::render() const {
   out += "# TYPE lienewton_http_requests_total counter\n";
   for (const auto& [key, count] : requests_) {
     const auto& [route, method, status] = key;
-    out += "lienewton_http_requests_total{route=\"" + route + "\",method=\"" + method + "\",code=\"" +
+    out += "lienewton_http_requests_total{route=\"" + escape(route) + "\",method=\"" + escape(method) + "\",code=\"" +
            std::to_string(status) + "\"} " + std::to_string(count) + "\n";
   }
   out += "# HELP lienewton_http_request_duration_seconds Time from routing to the last byte, per route.\n";
   out += "# TYPE lienewton_http_request_duration_seconds histogram\n";
-  for (const auto& [route, h] : latency_) h.render(out, "lienewton_http_request_duration_seconds", "route=\"" + route + "\"");
+  for (const auto& [route, h] : latency_) {
+    h.render(out, "lienewton_http_request_duration_seconds", "route=\"" + escape(route) + "\"");
+  }
   out += "# HELP lienewton_solves_total Solves (single solves and sweep cells) by final status.\n";
   out += "# TYPE lienewton_solves_total counter\n";
   for (const auto& [status, count] : solves_) {
-    out += "lienewton_solves_total{status=\"" + status + "\"} " + std::to_string(count) + "\n";
+    out += "lienewton_solves_total{status=\"" + escape(status) + "\"} " + std::to_string(count) + "\n";
   }
   out += "# HELP lienewton_solve_iterations Iterations per solve.\n";
   out += "# TYPE lienewton_solve_iterations histogram\n";
@@ -101,7 +120,12 @@ std::string Metrics::render() const {
   out += "# HELP lienewton_rejected_total Requests refused before any work, by reason.\n";
   out += "# TYPE lienewton_rejected_total counter\n";
   for (const auto& [reason, count] : rejected_) {
-    out += "lienewton_rejected_total{reason=\"" + reason + "\"} " + std::to_string(count) + "\n";
+    out += "lienewton_rejected_total{reason=\"" + escape(reason) + "\"} " + std::to_string(count) + "\n";
+  }
+  out += "# HELP lienewton_streams_total Finished NDJSON/SSE streams by how they ended (result or error code).\n";
+  out += "# TYPE lienewton_streams_total counter\n";
+  for (const auto& [outcome, count] : stream_outcomes_) {
+    out += "lienewton_streams_total{outcome=\"" + escape(outcome) + "\"} " + std::to_string(count) + "\n";
   }
   out += "# HELP lienewton_streams_in_flight Open NDJSON/SSE streams.\n";
   out += "# TYPE lienewton_streams_in_flight gauge\n";

@@ -1,6 +1,7 @@
 #pragma once
 // Prometheus counters, gauges and histograms for the service, rendered in the text exposition format.
-// Label values come only from fixed sets (route table, status names), so cardinality stays bounded.
+// Label values come only from fixed sets (route table, known methods or "other", status names, error codes),
+// so cardinality and the size of /metrics stay bounded; they are escaped per the exposition format all the same.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -33,6 +34,8 @@ class Metrics {
   void request_finished(const std::string& route, const std::string& method, int status, double seconds);
   void solve_finished(const std::string& status, int iterations);
   void rejected(const std::string& reason);
+  // How an NDJSON/SSE stream ended: "result" or the error code of its terminal error record.
+  void stream_ended(const std::string& outcome);
   void stream_started() { ++streams_in_flight_; }
   void stream_finished() { --streams_in_flight_; }
   void work_started() { ++work_in_flight_; }
@@ -48,6 +51,7 @@ class Metrics {
   std::map<std::string, Histogram> latency_;  // per route
   std::map<std::string, std::uint64_t> solves_;
   std::map<std::string, std::uint64_t> rejected_;
+  std::map<std::string, std::uint64_t> stream_outcomes_;
   Histogram iterations_;
   std::atomic<long> streams_in_flight_{0};
   std::atomic<long> work_in_flight_{0};

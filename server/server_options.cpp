@@ -18,7 +18,7 @@ struct Flag {
 constexpr Flag kFlags[] = {
     {"--host", "LIENEWTON_HOST", "address to bind (default 127.0.0.1; the container uses 0.0.0.0)"},
     {"--port", "LIENEWTON_PORT", "TCP port (default 8080)"},
-    {"--threads", "LIENEWTON_THREADS", "HTTP worker threads; each open connection holds one (default 8)"},
+    {"--threads", "LIENEWTON_THREADS", "workers serving complete requests; idle and slow connections hold none (default 8)"},
     {"--max-n", "LIENEWTON_MAX_N", "largest matrix size N accepted (default 64)"},
     {"--max-iterations", "LIENEWTON_MAX_ITERATIONS", "largest max_iterations accepted (default 10000)"},
     {"--max-grid", "LIENEWTON_MAX_GRID", "largest sweep grid (methods x n x h cells) accepted (default 5000)"},
@@ -27,6 +27,11 @@ constexpr Flag kFlags[] = {
     {"--max-body", "LIENEWTON_MAX_BODY", "largest request body in bytes; larger gets 413 (default 1048576)"},
     {"--max-streams", "LIENEWTON_MAX_STREAMS", "concurrent long requests (streams, solves, sweeps, renders); more get 503 (default threads - 2)"},
     {"--render-workers", "LIENEWTON_RENDER_WORKERS", "offscreen GL contexts for PNG renders (default 1)"},
+    {"--request-read-timeout", "LIENEWTON_REQUEST_READ_TIMEOUT", "seconds a request's head and body may take to arrive; then 408 (default 10)"},
+    {"--max-header-bytes", "LIENEWTON_MAX_HEADER_BYTES", "largest request line + headers in bytes; larger gets 431 (default 16384)"},
+    {"--max-headers", "LIENEWTON_MAX_HEADERS", "most header fields per request; more get 431 (default 100)"},
+    {"--max-connections", "LIENEWTON_MAX_CONNECTIONS", "open connections; more are answered 503 and closed (default 512, at most 900)"},
+    {"--max-connections-per-client", "LIENEWTON_MAX_CONNECTIONS_PER_CLIENT", "open connections per client address; more get 503 (default 64)"},
     {"--shutdown-grace", "LIENEWTON_SHUTDOWN_GRACE", "seconds open streams may finish after SIGTERM before they are ended with an error record (default 3)"},
 };
 
@@ -76,6 +81,18 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
     if (!parse_int(value, 1, 1024, o.max_streams)) return bad("an integer in [1, 1024]");
   } else if (name == "--render-workers") {
     if (!parse_int(value, 1, 64, o.render_workers)) return bad("an integer in [1, 64]");
+  } else if (name == "--request-read-timeout") {
+    if (!parse_double(value, 0.1, 3600, o.request_read_timeout)) return bad("a number of seconds in [0.1, 3600]");
+  } else if (name == "--max-header-bytes") {
+    if (!parse_int(value, 1024, 1 << 20, i)) return bad("an integer number of bytes in [1024, 1048576]");
+    o.max_header_bytes = static_cast<std::size_t>(i);
+  } else if (name == "--max-headers") {
+    if (!parse_int(value, 8, 10000, o.max_headers)) return bad("an integer in [8, 10000]");
+  } else if (name == "--max-connections") {
+    // cpp-httplib 0.11.4 (select-based) answers 500 for descriptors >= FD_SETSIZE (1024).
+    if (!parse_int(value, 4, 900, o.max_connections)) return bad("an integer in [4, 900]");
+  } else if (name == "--max-connections-per-client") {
+    if (!parse_int(value, 1, 900, o.max_connections_per_client)) return bad("an integer in [1, 900]");
   } else if (name == "--shutdown-grace") {
     if (!parse_double(value, 0, 8, d)) return bad("a number of seconds in [0, 8]");
     o.shutdown_grace = d;
@@ -88,7 +105,7 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
 }  // namespace
 
 int ServerOptions::effective_max_streams() const {
-  // Two workers stay free for /livez, /readyz and /metrics whatever the load.
+  // Two workers stay free for short requests (/metrics, static files); /livez and /readyz have their own.
   const int cap = std::max(1, threads - 2);
   return max_streams > 0 ? std::min(max_streams, cap) : cap;
 }

@@ -14,7 +14,7 @@ namespace lienewton::service {
 struct ServerOptions {
   std::string host = "127.0.0.1";
   int port = 8080;                 // 0: any free port (tests)
-  int threads = 8;                 // HTTP worker threads (each open connection holds one)
+  int threads = 8;                 // workers serving complete requests (idle and slow connections hold none)
   Limits limits;                   // max_n, max_iterations, grid caps
   double request_timeout = 30;     // seconds per request, streams included
   std::string web_root;            // "" : found next to the binary or in the working directory
@@ -22,7 +22,12 @@ struct ServerOptions {
   int max_streams = 0;             // concurrent long requests (streams, solves, renders); 0: threads - 2
   int render_workers = 1;
   double shutdown_grace = 3;       // seconds open streams may still finish after SIGTERM before being cut
-  int keep_alive_seconds = 2;      // short, because an idle keep-alive connection holds a worker
+  int keep_alive_seconds = 2;      // idle seconds between requests on one connection
+  double request_read_timeout = 10;  // seconds from a request's first byte to its last; then 408
+  std::size_t max_header_bytes = 16384;  // request line + headers; larger gets 431
+  int max_headers = 100;           // header fields; more get 431
+  int max_connections = 512;       // open connections; more get 503
+  int max_connections_per_client = 64;  // open connections per client address; more get 503
   bool healthcheck = false;        // --healthcheck: GET /livez of host:port and exit 0/1
   std::ostream* log = nullptr;     // one JSON line per request; nullptr: no log
   // Test hook: called with each progress record's index (iteration, cell, step, series) as it is produced.

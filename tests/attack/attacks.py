@@ -22,20 +22,9 @@ import urllib.parse
 # alone, "nginx": through deploy/nginx). They are skipped with a printed note; whoever fixes the item removes
 # the entry, so that the attack guards the fix from then on.
 KNOWN_FAILING = {
-    "valid_9k_body_as_form": ({"direct", "nginx"}, "item 8: httplib caps form-urlencoded bodies at 8192 bytes"),
-    "slow_header_drip": ({"direct"}, "item 2: each dripping socket holds a worker; no overall header deadline"),
-    "idle_connections": ({"direct"}, "item 2: idle keep-alive sockets hold workers"),
     "deadline_inside_sweep_cell": ({"direct", "nginx"}, "item 1: deadlines stop only between sweep cells"),
     "iterates_output_cap": ({"direct", "nginx"}, "item 3: include_iterates output is not capped"),
-    "many_headers": ({"direct"}, "item 3: 600k request headers are accepted"),
-    "chunked_smuggling": ({"direct"}, "item 4: httplib reads a refused body as new requests"),
-    "metrics_method_injection": ({"direct"}, "item 5: request methods appear unescaped in /metrics"),
-    "port_already_in_use": ({"direct"}, "item 6: SO_REUSEPORT lets a second server share the port"),
-    "range_on_api_route": ({"direct", "nginx"}, "item 8: Range is honoured on API routes"),
-    "trailing_nul_in_json": ({"direct", "nginx"}, "item 8: a trailing NUL after the JSON is accepted"),
-    "pipelined_requests": ({"direct"}, "item 4: pipelined requests after the first are dropped"),
     "sigterm_during_long_work": ({"direct"}, "item 7: SIGTERM waits for a running sweep cell"),
-    "expect_continue_oversized": ({"direct"}, "item 8: 100 Continue before the 413"),
 }
 
 TIMEOUT = 15.0  # seconds any single exchange may take
