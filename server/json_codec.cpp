@@ -386,7 +386,8 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"angle", finite_or_null(t.angle)},
          {"distance_to_pi", finite_or_null(t.distance_to_pi())},
          {"orthogonality_error", finite_or_null(t.orthogonality_error)},
-         {"seconds", finite_or_null(t.seconds)}};
+         {"seconds", finite_or_null(t.seconds)},
+         {"cpu_seconds", finite_or_null(t.cpu_seconds)}};
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;
 }
@@ -403,6 +404,7 @@ json to_json(const SolveResult& r, bool include_iterates) {
               {"y", matrix_to_json(r.y)},
               {"trace", std::move(trace)},
               {"seconds", finite_or_null(r.seconds)},
+              {"cpu_seconds", finite_or_null(r.cpu_seconds)},
               {"linear_solver", r.linear_solver}};
 }
 

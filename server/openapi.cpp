@@ -68,15 +68,20 @@ json schemas() {
                             {"step", nullable_number("||u_{n-1}||")}, {"angle", nullable_number("largest rotation angle of z^-1 y_n")},
                             {"distance_to_pi", nullable_number("pi - angle")},
                             {"orthogonality_error", nullable_number("||y^T y - I||_F")},
-                            {"seconds", nullable_number("since the solve started")},
+                            {"seconds", nullable_number("wall time since the solve started")},
+                            {"cpu_seconds", nullable_number("solver CPU time so far: the solving thread's CPU time, less what "
+                                                            "streaming the records cost (as work-precision times its runs)")},
                             {"y", matrix("iterate, only with include_iterates")}};
-  s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds"}, false);
+  s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds", "cpu_seconds"}, false);
   s["SolveResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"iterations", integer("iterations done")},
                              {"rate", nullable_number("convergence rate r (null when fewer than 3 iterations)")},
                              {"residual", nullable_number("final ||f||")}, {"orthogonality_error", nullable_number("")},
                              {"y", matrix("final iterate")}, {"trace", array_of(ref("TraceRecord"))},
-                             {"seconds", number("wall time")}, {"linear_solver", json{{"type", "string"}}}},
-                            {"status", "reason", "iterations", "rate", "residual", "orthogonality_error", "y", "trace", "seconds", "linear_solver"}, false);
+                             {"seconds", number("wall time")},
+                             {"cpu_seconds", number("solver CPU time of the whole solve (see TraceRecord.cpu_seconds)")},
+                             {"linear_solver", json{{"type", "string"}}}},
+                            {"status", "reason", "iterations", "rate", "residual", "orthogonality_error", "y", "trace", "seconds",
+                             "cpu_seconds", "linear_solver"}, false);
   s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")}});

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "core/cpu_clock.hpp"
+
 namespace lienewton {
 namespace {
 
@@ -27,9 +29,13 @@ std::optional<double> convergence_rate(const std::vector<double>& r, int p) {
 
 IterationMonitor::IterationMonitor(const SolverOptions& options, const TraceCallback& callback, int algebra_dim)
     : options_(options), callback_(callback), sqrt_q_(std::sqrt(double(algebra_dim))),
-      start_(std::chrono::steady_clock::now()) {
+      start_(std::chrono::steady_clock::now()), cpu_start_(thread_cpu_seconds()) {
   trace_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
   residuals_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
+}
+
+double IterationMonitor::solver_cpu_seconds() const {
+  return thread_cpu_seconds() - cpu_start_ - callback_cpu_seconds_;
 }
 
 double IterationMonitor::elapsed() const {
@@ -40,7 +46,12 @@ std::optional<Status> IterationMonitor::commit(TraceRecord& rec, double scale) {
   const double r = rec.residual;
   residuals_.push_back(r);
   trace_.push_back(std::move(rec));
-  if (callback_ && !callback_(trace_.back())) return Status::cancelled;
+  if (callback_) {
+    const double before = thread_cpu_seconds();
+    const bool go_on = callback_(trace_.back());
+    callback_cpu_seconds_ += thread_cpu_seconds() - before;
+    if (!go_on) return Status::cancelled;
+  }
   if (!std::isfinite(r) || !std::isfinite(trace_.back().step)) return Status::non_finite;
   if (r <= options_.tol) return Status::converged;
   if (r > kDivergenceBound || trace_.back().step > kDivergenceBound) return Status::diverged;
@@ -61,6 +72,7 @@ SolveResult IterationMonitor::finish(Status status, std::string detail) {
   if (status == Status::stagnated) res.residual = best_;
   if (!trace_.empty()) res.orthogonality_error = trace_.back().orthogonality_error;
   res.seconds = elapsed();
+  res.cpu_seconds = solver_cpu_seconds();
   res.trace = std::move(trace_);
   res.reason = reason_for(status, res);
   if (!detail.empty()) res.reason += " (" + detail + ")";

@@ -18,7 +18,8 @@ struct TraceRecord {
   double step = 0;                 // ||u_{n-1}||, the update that produced y_n (0 for n = 0)
   double angle = 0;                // largest rotation angle of z^-1 y_n
   double orthogonality_error = 0;  // ||y_n^T y_n - I||_F (the group's defect of y_n)
-  double seconds = 0;              // since the solve started
+  double seconds = 0;              // wall time since the solve started
+  double cpu_seconds = 0;          // the solver's own CPU time so far (thread CPU time, callbacks excluded)
   Eigen::MatrixXd y;               // y_n when include_iterates, else empty
   double distance_to_pi() const { return std::numbers::pi - angle; }
 };
@@ -32,7 +33,8 @@ struct SolveResult {
   double orthogonality_error = 0;
   Eigen::MatrixXd y;            // the final iterate (never NaN: a non-finite iterate is replaced by the last finite one)
   std::vector<TraceRecord> trace;
-  double seconds = 0;
+  double seconds = 0;           // wall time
+  double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded)
   std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
 };
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/cpu_clock.hpp"
 #include "core/solvers/run_method.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
@@ -71,6 +72,26 @@ TEST(Solve, TraceHasOneRecordPerIterateAndIterationsIsTheConvergedIndex) {
   }
   EXPECT_TRUE(r.trace[0].y.isApprox(start_point(5, req.seed), 0.0));  // y_0 = z
   EXPECT_LT(r.orthogonality_error, 1e-13);
+}
+
+// cpu_seconds is the solver's own CPU time: it grows along the trace, ends at the result's, and leaves out
+// what the callback spends (a callback that burns 5 ms of CPU per record does not show up in it).
+TEST(Solve, SolverCpuTimeGrowsAlongTheTraceAndExcludesTheCallback) {
+  constexpr double kBurn = 5e-3;
+  const SolveRequest req = paper_linear(6, Method::newton_group, Differential::finite_difference);
+  const SolveResult r = solve(req, [&](const TraceRecord&) {
+    const double until = thread_cpu_seconds() + kBurn;
+    while (thread_cpu_seconds() < until) {
+    }
+    return true;
+  });
+  ASSERT_EQ(r.status, Status::converged);
+  ASSERT_GE(r.trace.size(), 3u);
+  EXPECT_GT(r.trace[1].cpu_seconds, 0.0);
+  for (std::size_t i = 1; i < r.trace.size(); ++i) EXPECT_GE(r.trace[i].cpu_seconds, r.trace[i - 1].cpu_seconds);
+  EXPECT_GE(r.cpu_seconds, r.trace.back().cpu_seconds);
+  const double burnt = kBurn * static_cast<double>(r.trace.size());
+  EXPECT_LT(r.cpu_seconds, 0.5 * burnt) << "the callback's CPU time leaked into the solver's";
 }
 
 TEST(Solve, LastAllowedIterateIsStillTested) {

@@ -56,12 +56,13 @@ TEST_F(Routes, SolveAnswersTheDocumentedFormat) {
   const json r = json::parse(res->body);
   EXPECT_EQ(r["status"], "converged");
   for (const char* field : {"status", "reason", "iterations", "rate", "residual", "orthogonality_error", "y", "trace",
-                            "seconds", "linear_solver"}) {
+                            "seconds", "cpu_seconds", "linear_solver"}) {
     EXPECT_TRUE(r.contains(field)) << field;
   }
   EXPECT_EQ(r["y"].size(), 3u);
   const json& t = r["trace"][0];
-  for (const char* field : {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds"}) {
+  for (const char* field : {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds",
+                            "cpu_seconds"}) {
     EXPECT_TRUE(t.contains(field)) << field;
   }
   EXPECT_FALSE(t.contains("y"));
