@@ -1,6 +1,8 @@
 #include "render/residuals_scene.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "render/options.hpp"
@@ -11,11 +13,18 @@ namespace {
 
 constexpr float kTimePanelShare = 0.42f;  // the time panel has no legend column, so it needs less width
 
+// Three significant digits: "958 us", not "957.998 us".
+std::string time_text(double seconds) {
+  char rounded[32];
+  std::snprintf(rounded, sizeof rounded, "%.3g", seconds);
+  return tick_label(std::strtod(rounded, nullptr), AxisUnit::seconds);
+}
+
 std::string legend_label(const ResidualRun& run) {
   std::string label = series_name(run.method, run.differential) + ": ";
   const int iterations = static_cast<int>(run.residual.size()) - 1;
   if (run.status == Status::converged) {
-    label += std::to_string(iterations) + " it, " + tick_label(run.cpu_seconds.back(), AxisUnit::seconds);
+    label += std::to_string(iterations) + " it, " + time_text(run.cpu_seconds.back());
   } else {
     label += std::string(to_string(run.status)) + " after " + std::to_string(iterations) + " it";
   }

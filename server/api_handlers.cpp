@@ -179,10 +179,17 @@ HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
 HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
   return serve(req, work_precision_job(request_json(req)), false);
 }
-HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), true); }
+HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), service::render_frames); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
 HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
-  return render(request_json(req, {"methods", "n", "h"}), false);
+  return render(request_json(req, {"methods", "n", "h"}), service::render_heatmap);
+}
+// The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
+HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
+  return render(request_json(req, {"choices", "h"}), service::render_work_precision);
+}
+HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
+  return render(request_json(req, {"methods", "differentials"}), service::render_residuals);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
 // Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).
@@ -253,7 +260,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) 
   return res;
 }
 
-HttpResponse ApiHandlers::render(const json& body, bool frames) {
+HttpResponse ApiHandlers::render(const json& body, RenderRequestFn draw) {
   StopCheck stop = make_stop();
   std::shared_ptr<Slot> slot;
   RenderHooks hooks;
@@ -266,8 +273,7 @@ HttpResponse ApiHandlers::render(const json& body, bool frames) {
   hooks.on_solve = [&](const SolveResult& r) { metrics_.solve_finished(std::string(to_string(r.status)), r.iterations); };
   std::vector<unsigned char> png;
   try {
-    png = frames ? service::render_frames(body, options_.limits, *renderer_, hooks)
-                 : service::render_heatmap(body, options_.limits, *renderer_, hooks);
+    png = draw(body, options_.limits, *renderer_, hooks);
   } catch (const RenderCancelled&) {
     throw_stopped(stop);
   } catch (const render::RenderUnavailable&) {

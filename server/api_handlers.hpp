@@ -12,6 +12,7 @@
 #include "server/http_exchange.hpp"
 #include "server/json_codec.hpp"
 #include "server/metrics.hpp"
+#include "server/render_requests.hpp"
 #include "server/server_options.hpp"
 
 namespace lienewton::render { class Renderer; }
@@ -32,6 +33,8 @@ class ApiHandlers {
   HttpResponse work_precision(const HttpRequest& req);
   HttpResponse render_frames(const HttpRequest& req);
   HttpResponse render_heatmap(const HttpRequest& req);
+  HttpResponse render_work_precision(const HttpRequest& req);
+  HttpResponse render_residuals(const HttpRequest& req);
   HttpResponse livez(const HttpRequest& req);
   HttpResponse readyz(const HttpRequest& req);
   HttpResponse metrics(const HttpRequest& req);
@@ -56,7 +59,7 @@ class ApiHandlers {
   Job work_precision_job(const json& body);
   HttpResponse serve(const HttpRequest& req, Job job, bool sse);
   HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse);
-  HttpResponse render(const json& body, bool frames);
+  HttpResponse render(const json& body, RenderRequestFn draw);
 
   const ServerOptions& options_;
   Metrics& metrics_;

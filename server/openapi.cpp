@@ -141,6 +141,18 @@ json schemas() {
       {"properties", {{"sweep", ref("SweepResult")},
                       {"metric", json{{"type", "string"}, {"enum", {"iterations", "rate", "residual"}}}},
                       {"width", width}, {"height", width}}}};
+  s["RenderWorkPrecisionRequest"] = json{
+      {"description", "A WorkPrecisionRequest plus width/height (default 960 x 640). Each choice is one line through "
+                      "its converged h (largest first), styled as x-lienewton.series_styles in order; the legend gives "
+                      "the fitted order p. No converged run at all: 422."},
+      {"type", "object"},
+      {"properties", {{"width", width}, {"height", width}}}};
+  s["RenderResidualsRequest"] = json{
+      {"description", "A SolveRequest without method and differential, plus the lists below and width/height "
+                      "(default 1200 x 520). One solve per method x differential (fixed point once); left panel "
+                      "||f(y_n)|| against the solver's own CPU time (TraceRecord.cpu_seconds), right panel against n."},
+      {"type", "object"},
+      {"properties", {{"methods", array_of(method)}, {"differentials", array_of(differential)}, {"width", width}, {"height", width}}}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining"}}}}}, {"status"}, false);
   s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
@@ -180,6 +192,13 @@ json query_parameters(const json& all_schemas, const std::string& schema) {
   add(all_schemas[schema]);
   if (schema == "RenderFramesRequest") add(all_schemas["SolveRequest"]);
   if (schema == "RenderHeatmapRequest") add(all_schemas["SweepRequest"]);
+  if (schema == "RenderWorkPrecisionRequest") add(all_schemas["WorkPrecisionRequest"]);
+  if (schema == "RenderResidualsRequest") {
+    json solve = all_schemas["SolveRequest"];
+    solve["properties"].erase("method");
+    solve["properties"].erase("differential");
+    add(solve);
+  }
   return params;
 }
 

@@ -6,6 +6,7 @@
 #include "core/status.hpp"
 #include "render/colormap.hpp"
 #include "render/options.hpp"
+#include "render/series_style.hpp"
 
 namespace lienewton::service {
 namespace {
@@ -124,6 +125,17 @@ json viridis_stops() {
   return stops;
 }
 
+// The PNG charts' series styles, so that the dashboard draws series i as the server does.
+json series_styles() {
+  json styles = json::array();
+  for (std::size_t i = 0; i < render::kDistinctSeriesStyles; ++i) {
+    const render::SeriesStyle s = render::series_style(i);
+    styles.push_back({{"color", css(s.color)}, {"dash", std::string(to_string(s.dash))},
+                      {"dash_pattern", render::dash_pattern(s.dash)}, {"marker", std::string(to_string(s.marker))}});
+  }
+  return styles;
+}
+
 }  // namespace
 
 json openapi_labels() {
@@ -139,7 +151,8 @@ json openapi_labels() {
             {"linear_solver", entries(kAllLinearSolvers)},
             {"status", statuses},
             {"heatmap_metric", entries(render::kAllHeatmapMetrics)}}},
-          {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()}}}};
+          {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()}}},
+          {"series_styles", series_styles()}};
 }
 
 }  // namespace lienewton::service

@@ -1,10 +1,16 @@
 #include "server/render_requests.hpp"
 
+#include <algorithm>
 #include <climits>
+#include <cstdio>
+#include <stdexcept>
 
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
+#include "core/work_precision.hpp"
+#include "render/residuals_scene.hpp"
+#include "render/work_precision_scene.hpp"
 #include "render/renderer.hpp"
 #include "server/http_errors.hpp"
 
@@ -63,6 +69,49 @@ void before_work(const RenderHooks& hooks) {
 }
 
 bool keep_going(const RenderHooks& hooks, int index) { return !hooks.keep_going || hooks.keep_going(index); }
+
+// A list of enum names taken out of the request; all values when absent. Repeats are dropped.
+template <class E, std::size_t K>
+std::vector<E> take_enum_list(json& request, const char* field, std::optional<E> (*parse)(std::string_view),
+                              const E (&all)[K]) {
+  auto it = request.find(field);
+  if (it == request.end() || it->is_null()) {
+    if (it != request.end()) request.erase(it);
+    return {std::begin(all), std::end(all)};
+  }
+  std::string names;
+  for (E e : all) names += (names.empty() ? "" : ", ") + std::string(to_string(e));
+  const std::string message = std::string(field) + " must be a non-empty list of " + names;
+  if (!it->is_array() || it->empty() || it->size() > 16) throw FieldError("invalid_field", field, message);
+  std::vector<E> out;
+  for (const json& v : *it) {
+    const std::optional<E> e = v.is_string() ? parse(v.get<std::string>()) : std::nullopt;
+    if (!e) throw FieldError("invalid_field", field, message);
+    if (std::find(out.begin(), out.end(), *e) == out.end()) out.push_back(*e);
+  }
+  request.erase(it);
+  return out;
+}
+
+std::string group_name(int n) { return "SO(" + std::to_string(n) + ")"; }
+
+std::string number_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+// The figure's PNG; a figure with nothing to draw (every run failed) is a 422.
+template <class MakeFigure>
+std::vector<unsigned char> draw_figure(render::Renderer& renderer, MakeFigure make) {
+  render::Figure figure;
+  try {
+    figure = make();
+  } catch (const std::invalid_argument& e) {
+    throw ApiError(422, "unprocessable", "", std::string("nothing to draw: ") + e.what());
+  }
+  return renderer.figure_png(figure);
+}
 
 }  // namespace
 
@@ -148,6 +197,66 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
   });
   if (stopped) throw RenderCancelled{};
   return renderer.heatmap_png(result, options);
+}
+
+std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
+                                                 const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const int width = take_int(request, "width", 960, render::kMinImageSize, render::kMaxImageSize, false);
+  const int height = take_int(request, "height", 640, render::kMinImageSize, render::kMaxImageSize, false);
+  WorkPrecisionRequest r = work_precision_request_from_json(request, limits);
+  validate(r);
+  before_work(hooks);
+  int index = 0;
+  bool stopped = false;
+  const WorkPrecisionResult result = work_precision(r, [&](const WorkPrecisionSeries&) {
+    return !(stopped = !keep_going(hooks, index++));
+  });
+  if (stopped) throw RenderCancelled{};
+  const std::string title = "Work-precision: " + std::string(to_string(r.problem)) + " on " + group_name(r.n) +
+                            ", t_end = " + number_text(r.t_end);
+  return draw_figure(renderer, [&] { return render::work_precision_scene(result, title, width, height); });
+}
+
+std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
+                                            const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const int width = take_int(request, "width", 1200, render::kMinImageSize, render::kMaxImageSize, false);
+  const int height = take_int(request, "height", 520, render::kMinImageSize, render::kMaxImageSize, false);
+  const std::vector<Method> methods = take_enum_list(request, "methods", method_from_string, kAllMethods);
+  const std::vector<Differential> differentials =
+      take_enum_list(request, "differentials", differential_from_string, kAllDifferentials);
+  for (const char* one : {"method", "differential"}) {
+    if (request.contains(one)) {
+      throw FieldError("unknown_field", one, std::string(one) + " is chosen by the lists " + one + "s here");
+    }
+  }
+  SolveRequest base = solve_request_from_json(request, limits);
+  validate(base);
+  before_work(hooks);
+  std::vector<render::ResidualRun> runs;
+  int index = 0;
+  for (Method m : methods) {
+    for (Differential d : differentials) {
+      // Fixed point (1.2) forms no differential: one run, whatever differentials lists.
+      if (m == Method::fixed_point && d != differentials.front()) continue;
+      SolveRequest r = base;
+      r.method = m;
+      r.differential = d;
+      const SolveResult result = solve(r, [&](const TraceRecord&) { return keep_going(hooks, index++); });
+      if (hooks.on_solve) hooks.on_solve(result);
+      if (result.status == Status::cancelled) throw RenderCancelled{};
+      render::ResidualRun run{.method = m, .differential = d, .status = result.status, .cpu_seconds = {}, .residual = {}};
+      for (const TraceRecord& t : result.trace) {
+        run.cpu_seconds.push_back(t.cpu_seconds);
+        run.residual.push_back(t.residual);
+      }
+      runs.push_back(std::move(run));
+    }
+  }
+  const std::string title = "||f(y_n)|| against solver CPU time: " + std::string(to_string(base.problem)) + " on " +
+                            group_name(base.n) + ", h = " + number_text(base.h);
+  return draw_figure(renderer, [&] { return render::residuals_scene(runs, title, width, height); });
 }
 
 }  // namespace lienewton::service

@@ -29,5 +29,15 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
 // Heatmap: a SweepRequest or {"sweep": SweepResult}, plus metric/width/height (0 or absent: automatic).
 std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,
                                           const RenderHooks& hooks);
+// Work-precision diagram: a WorkPrecisionRequest plus width/height (default 960 x 640).
+std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
+                                                 const RenderHooks& hooks);
+// Residuals against solver CPU time and iteration: a SolveRequest without method/differential, plus
+// methods/differentials lists (default: all; fixed point once) and width/height (default 1200 x 520).
+std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
+                                            const RenderHooks& hooks);
+
+// Any of the above.
+using RenderRequestFn = std::vector<unsigned char> (*)(json, const Limits&, render::Renderer&, const RenderHooks&);
 
 }  // namespace lienewton::service

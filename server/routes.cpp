@@ -39,6 +39,18 @@ std::vector<RouteSpec> build_table() {
       {&ApiHandlers::render_heatmap, "GET", "/api/v1/render/heatmap",
        "GET form of render/heatmap for <img src> (query parameters mirror the sweep request)", BodyKind::none, true,
        "RenderHeatmapRequest", {"image/png"}, "", kGetWorkErrors},
+      {&ApiHandlers::render_work_precision, "POST", "/api/v1/render/work-precision",
+       "PNG work-precision diagram: solver CPU time vs global error, one line per choice through its h, fitted order "
+       "in the legend", BodyKind::json, true, "RenderWorkPrecisionRequest", {"image/png"}, "", kJsonPostErrors},
+      {&ApiHandlers::render_work_precision, "GET", "/api/v1/render/work-precision",
+       "GET form of render/work-precision for <img src> (choices as JSON text)", BodyKind::none, true,
+       "RenderWorkPrecisionRequest", {"image/png"}, "", kGetWorkErrors},
+      {&ApiHandlers::render_residuals, "POST", "/api/v1/render/residuals",
+       "PNG of ||f(y_n)|| vs solver CPU time beside ||f(y_n)|| vs iteration for every method x differential of one "
+       "equation", BodyKind::json, true, "RenderResidualsRequest", {"image/png"}, "", kJsonPostErrors},
+      {&ApiHandlers::render_residuals, "GET", "/api/v1/render/residuals",
+       "GET form of render/residuals for <img src> (query parameters mirror RenderResidualsRequest)", BodyKind::none,
+       true, "RenderResidualsRequest", {"image/png"}, "", kGetWorkErrors},
       {&ApiHandlers::livez, "GET", "/livez", "Liveness: answers while the process serves requests", BodyKind::none, false,
        "", {"application/json"}, "Health", {}, true},
       {&ApiHandlers::readyz, "GET", "/readyz", "Readiness: 503 while draining for shutdown", BodyKind::none, false, "",

@@ -5,6 +5,7 @@
 
 #include "core/status.hpp"
 #include "render/colormap.hpp"
+#include "render/series_style.hpp"
 #include "server/json_codec.hpp"
 #include "server/routes.hpp"
 #include "test_server.hpp"
@@ -98,6 +99,14 @@ TEST(OpenApi, ExtensionLabelsEveryEnumValue) {
       }
       EXPECT_TRUE(labels.insert(entries[i]["label"].get<std::string>()).second) << name << ": label used twice";
     }
+  }
+  // The charts' series styles, as the renderer draws them.
+  ASSERT_EQ(ext["series_styles"].size(), render::kDistinctSeriesStyles);
+  for (std::size_t i = 0; i < render::kDistinctSeriesStyles; ++i) {
+    const render::SeriesStyle s = render::series_style(i);
+    EXPECT_EQ(ext["series_styles"][i]["color"], css(s.color)) << i;
+    EXPECT_EQ(ext["series_styles"][i]["marker"], std::string(to_string(s.marker))) << i;
+    EXPECT_EQ(ext["series_styles"][i]["dash"], std::string(to_string(s.dash))) << i;
   }
   for (const auto& entry : ext["enums"]["method"]) {
     EXPECT_EQ(entry["uses_differential"], entry["value"] != "fixed-point") << entry["value"];
