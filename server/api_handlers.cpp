@@ -80,17 +80,17 @@ std::shared_ptr<ApiHandlers::Slot> ApiHandlers::acquire_slot() {
   return std::make_shared<Slot>(slots_in_use_, metrics_);
 }
 
-StopCheck ApiHandlers::make_stop() const {
+StopCheck ApiHandlers::make_stop(double budget_seconds) const {
   const auto timeout = std::chrono::duration_cast<StopCheck::Clock::duration>(
-      std::chrono::duration<double>(options_.request_timeout));
-  return StopCheck(StopCheck::Clock::now() + timeout, abort_work_);
+      std::chrono::duration<double>(budget_seconds));
+  return StopCheck(StopCheck::Clock::now() + timeout, abort_work_, budget_seconds);
 }
 
 void ApiHandlers::progress(int index) const {
   if (options_.on_progress) options_.on_progress(index);
 }
 
-void ApiHandlers::throw_stopped(const StopCheck& stop) const {
+void ApiHandlers::throw_stopped(const StopCheck& stop, const std::string& done) const {
   switch (stop.reason()) {
     case StopReason::shutdown:
       throw ApiError(503, "shutting_down", "", "the server is shutting down; the work was cancelled");
@@ -98,8 +98,8 @@ void ApiHandlers::throw_stopped(const StopCheck& stop) const {
       throw ApiError(499, "client_gone", "", "the client closed the connection");
     default:
       throw ApiError(504, "deadline_exceeded", "",
-                     "the request took longer than the server's limit of " + format_seconds(options_.request_timeout) +
-                         " and was cancelled");
+                     "the request took longer than the server's limit of " + format_seconds(stop.budget_seconds()) +
+                         " and was cancelled" + done);
   }
 }
 
@@ -130,7 +130,13 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
       if (emit && !emit("cell", to_json(cell))) return !(stopped = true);
       return !(stopped = stop.should_stop());
     });
-    if (stopped) throw_stopped(stop);
+    if (stopped) {
+      // Say how far it got: the cells finished (and streamed) and those never computed.
+      const SweepRequest full = with_defaults(request);
+      const std::size_t total = full.methods.size() * full.n.size() * full.h.size();
+      throw_stopped(stop, ": " + std::to_string(result.cells.size()) + " of " + std::to_string(total) +
+                              " cells finished, " + std::to_string(total - result.cells.size()) + " not computed");
+    }
     return to_json(result);
   };
 }
@@ -168,28 +174,28 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   };
 }
 
-HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, solve_job(request_json(req)), false); }
+HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, solve_job(request_json(req)), false, options_.request_timeout); }
 HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
-  return serve(req, solve_job(request_json(req)), true);
+  return serve(req, solve_job(request_json(req)), true, options_.request_timeout);
 }
-HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, sweep_job(request_json(req)), false); }
+HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, sweep_job(request_json(req)), false, options_.sweep_timeout); }
 HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
-  return serve(req, integrate_job(request_json(req)), false);
+  return serve(req, integrate_job(request_json(req)), false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
-  return serve(req, work_precision_job(request_json(req)), false);
+  return serve(req, work_precision_job(request_json(req)), false, options_.request_timeout);
 }
-HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), service::render_frames); }
+HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
 HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
-  return render(request_json(req, {"methods", "n", "h"}), service::render_heatmap);
+  return render(request_json(req, {"methods", "n", "h"}), service::render_heatmap, options_.sweep_timeout);
 }
 // The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
 HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
-  return render(request_json(req, {"choices", "h"}), service::render_work_precision);
+  return render(request_json(req, {"choices", "h"}), service::render_work_precision, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
-  return render(request_json(req, {"methods", "differentials"}), service::render_residuals);
+  return render(request_json(req, {"methods", "differentials"}), service::render_residuals, options_.request_timeout);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
 // Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).
@@ -207,23 +213,23 @@ HttpResponse ApiHandlers::metrics(const HttpRequest&) {
 HttpResponse ApiHandlers::openapi(const HttpRequest&) { return json_response(openapi_document_); }
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
-HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse) {
+HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse, double budget_seconds) {
   auto slot = acquire_slot();
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
-  if (sse || ndjson) return stream(std::move(slot), std::move(job), sse);
-  StopCheck stop = make_stop();
+  if (sse || ndjson) return stream(std::move(slot), std::move(job), sse, budget_seconds);
+  StopCheck stop = make_stop(budget_seconds);
   return json_response(dump(job(Emit{}, stop)));
 }
 
 // Streams run inside the body stream, on the connection's own worker: each record is written as it is
 // produced, and a failed write (client gone) cancels the work at the next callback. The stream owns the work
 // slot, so the slot is held until the transport drops the response.
-HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) {
+HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, double budget_seconds) {
   slot->mark_streaming();
   HttpResponse res;
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Accel-Buffering", "no");
-  auto stop = std::make_shared<StopCheck>(make_stop());
+  auto stop = std::make_shared<StopCheck>(make_stop(budget_seconds));
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
   res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
   res.stream = [slot, job = std::move(job), stop, sse, metrics = &metrics_](const ChunkSink& sink) {
@@ -260,8 +266,8 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse) 
   return res;
 }
 
-HttpResponse ApiHandlers::render(const json& body, RenderRequestFn draw) {
-  StopCheck stop = make_stop();
+HttpResponse ApiHandlers::render(const json& body, RenderRequestFn draw, double budget_seconds) {
+  StopCheck stop = make_stop(budget_seconds);
   std::shared_ptr<Slot> slot;
   RenderHooks hooks;
   hooks.before_work = [&] { slot = acquire_slot(); };

@@ -49,17 +49,18 @@ class ApiHandlers {
  private:
   class Slot;
   std::shared_ptr<Slot> acquire_slot();
-  StopCheck make_stop() const;
+  StopCheck make_stop(double budget_seconds) const;
   void progress(int index) const;
-  [[noreturn]] void throw_stopped(const StopCheck& stop) const;
+  [[noreturn]] void throw_stopped(const StopCheck& stop, const std::string& done = {}) const;
 
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
-  HttpResponse serve(const HttpRequest& req, Job job, bool sse);
-  HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse);
-  HttpResponse render(const json& body, RenderRequestFn draw);
+  // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps).
+  HttpResponse serve(const HttpRequest& req, Job job, bool sse, double budget_seconds);
+  HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, double budget_seconds);
+  HttpResponse render(const json& body, RenderRequestFn draw, double budget_seconds);
 
   const ServerOptions& options_;
   Metrics& metrics_;

@@ -11,7 +11,9 @@ enum class StopReason { none, deadline, shutdown, client_gone };
 class StopCheck {
  public:
   using Clock = std::chrono::steady_clock;
-  StopCheck(Clock::time_point deadline, const std::atomic<bool>& abort) : deadline_(deadline), abort_(abort) {}
+  // budget_seconds: the limit the deadline came from, for the message when it passes.
+  StopCheck(Clock::time_point deadline, const std::atomic<bool>& abort, double budget_seconds = 0)
+      : deadline_(deadline), abort_(abort), budget_seconds_(budget_seconds) {}
 
   bool should_stop() {
     if (reason_ != StopReason::none) return true;
@@ -21,10 +23,12 @@ class StopCheck {
   }
   void client_gone() { reason_ = StopReason::client_gone; }
   StopReason reason() const { return reason_; }
+  double budget_seconds() const { return budget_seconds_; }
 
  private:
   Clock::time_point deadline_;
   const std::atomic<bool>& abort_;
+  double budget_seconds_;
   StopReason reason_ = StopReason::none;
 };
 

@@ -173,7 +173,7 @@ std::string status_text(int status) {
     case 416: return "More than one byte range";
     case 422: return "Valid JSON, impossible request";
     case 503: return "Over capacity, draining, or renderer unavailable";
-    case 504: return "Deadline (--request-timeout) passed";
+    case 504: return "Deadline passed (--request-timeout; --sweep-timeout for sweeps and heatmaps)";
     default: return "Error";
   }
 }

@@ -23,6 +23,7 @@ constexpr Flag kFlags[] = {
     {"--max-iterations", "LIENEWTON_MAX_ITERATIONS", "largest max_iterations accepted (default 10000)"},
     {"--max-grid", "LIENEWTON_MAX_GRID", "largest sweep grid (methods x n x h cells) accepted (default 5000)"},
     {"--request-timeout", "LIENEWTON_REQUEST_TIMEOUT", "seconds a request (or stream) may run; then 504 (default 30)"},
+    {"--sweep-timeout", "LIENEWTON_SWEEP_TIMEOUT", "seconds a sweep or heatmap render (JSON or stream) may run; then 504 (default 600)"},
     {"--web-root", "LIENEWTON_WEB_ROOT", "directory of the dashboard (default: the repository's web/ next to the binary, or ./web)"},
     {"--max-body", "LIENEWTON_MAX_BODY", "largest request body in bytes; larger gets 413 (default 1048576)"},
     {"--max-streams", "LIENEWTON_MAX_STREAMS", "concurrent long requests (streams, solves, sweeps, renders); more get 503 (default threads - 2)"},
@@ -72,6 +73,8 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
     o.limits.max_grid_cells = static_cast<std::size_t>(i);
   } else if (name == "--request-timeout") {
     if (!parse_double(value, 0.001, 86400, o.request_timeout)) return bad("a number of seconds in [0.001, 86400]");
+  } else if (name == "--sweep-timeout") {
+    if (!parse_double(value, 0.001, 86400, o.sweep_timeout)) return bad("a number of seconds in [0.001, 86400]");
   } else if (name == "--web-root") {
     o.web_root = value;
   } else if (name == "--max-body") {

@@ -17,6 +17,9 @@ struct ServerOptions {
   int threads = 8;                 // workers serving complete requests (idle and slow connections hold none)
   Limits limits;                   // max_n, max_iterations, grid caps
   double request_timeout = 30;     // seconds per request, streams included
+  // seconds a sweep (JSON, stream or heatmap render) may run: a stability map of hundreds of solves gets a budget
+  // of its own, long enough for the default map (882 cells) on a busy 2-core machine
+  double sweep_timeout = 600;
   std::string web_root;            // "" : found next to the binary or in the working directory
   std::size_t max_body = 1 << 20;  // bytes
   int max_streams = 0;             // concurrent long requests (streams, solves, renders); 0: threads - 2

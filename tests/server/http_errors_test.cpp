@@ -166,5 +166,33 @@ TEST(HttpErrors, DeadlineGives504AndCancelsTheSolve) {
   EXPECT_EQ(s.server->metrics().solves("cancelled"), 2u);
 }
 
+// A sweep has a budget of its own (--sweep-timeout): a map that outlasts the single-solve deadline finishes,
+// and one that outlasts its own budget says how many cells it finished and how many were never computed.
+TEST(HttpErrors, SweepsRunOnTheirOwnBudgetAndCountWhatTheyDid) {
+  constexpr const char* kSweep = R"({"methods":["newton-group"],"differential":"exact","n":[3,4],"h":[0.25,0.5,1]})";
+  ServerOptions o;
+  o.request_timeout = 0.05;
+  o.sweep_timeout = 60;
+  o.on_progress = [](int) { std::this_thread::sleep_for(std::chrono::milliseconds(20)); };  // 6 cells: 0.12 s
+  {
+    TestServer s(o);
+    auto c = s.client();
+    auto r = c.Post("/api/v1/sweep", kSweep, "application/json");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << r->body;
+    EXPECT_EQ(json::parse(r->body)["cells"].size(), 6u);
+  }
+  o.sweep_timeout = 0.05;
+  TestServer s(o);
+  auto c = s.client();
+  auto r = c.Post("/api/v1/sweep", kSweep, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 504);
+  const std::string message = error_of(r)["message"];
+  EXPECT_NE(message.find("limit of 0.05 s"), std::string::npos) << message;
+  EXPECT_NE(message.find(" of 6 cells finished, "), std::string::npos) << message;
+  EXPECT_NE(message.find(" not computed"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace lienewton::service
