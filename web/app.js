@@ -40,6 +40,8 @@ createSpeedPanel(document.querySelector('#speed .panel-body'));
 
 const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
 select(fromHash() ?? tabs[0], false);
+// A #panel address picks the tab; the page still opens at the top (header and tab bar in view on a phone).
+window.scrollTo(0, 0);
 window.addEventListener('hashchange', () => { const t = fromHash(); if (t) select(t, false); });
 
 // A small liveness light in the header: the dashboard is static, the numbers come from the service.

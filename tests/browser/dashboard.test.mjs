@@ -132,9 +132,27 @@ test('compare draws one residual curve per ticked method', async () => {
   const panel = page.locator('#compare');
   const ticked = await panel.locator('input[name="runs"]:checked').count();
   await panel.getByRole('button', { name: 'Run' }).click();
+  const clicked = Date.now();
   await panel.locator('#compare-table tbody tr').nth(ticked - 1).waitFor();
+  console.log(`compare defaults: ${Date.now() - clicked} ms from click to complete`);
   assert.equal(await page.locator('#compare-chart').getAttribute('data-series'), String(ticked));
+  // Speed vs accuracy of the solvers: one line per run, x = the trace's cpu_seconds, and the time to tol.
+  assert.equal(await page.locator('#compare-time-chart').getAttribute('data-series'), String(ticked));
+  assert.ok(Number(await page.locator('#compare-time-chart').getAttribute('data-points')) >= ticked);
+  const ttol = await panel.locator('#compare-table td[data-col="time-to-tol"]').allInnerTexts();
+  assert.equal(ttol.length, ticked);
+  for (const t of ttol) assert.match(t, /^(\d+(\.\d+)? (\u00b5s|ms|s)|not reached)$/);
   await shot('compare');
+});
+
+test('Esc cancels a run started by clicking Run', async () => {
+  await tab('Stability map');
+  const panel = page.locator('#stability');
+  await panel.getByRole('button', { name: 'Run' }).click();
+  await page.waitForFunction(() => document.querySelector('#stability progress')?.value >= 1);
+  await page.keyboard.press('Escape');
+  await panel.locator('.form-error', { hasText: 'Cancelled.' }).waitFor();
+  assert.equal(await panel.getByRole('button', { name: 'Run' }).isEnabled(), true);
 });
 
 test('a sweep renders the heatmap and hovering a cell shows that cell', async () => {
@@ -197,8 +215,43 @@ test('the work-precision chart has one series per ticked choice', async () => {
   assert.ok(ticked >= 2);
   const response = page.waitForResponse((r) => r.url().endsWith('/api/v1/work-precision'));
   await panel.getByRole('button', { name: 'Run' }).click();
+  const clicked = Date.now();
   const wp = await (await response).json();
+  console.log(`work-precision (speed panel) defaults, k from -5: ${Date.now() - clicked} ms from click to chart`);
   assert.equal(wp.series.length, ticked);
+  // Legend: every series with its fitted order p, in the server's style (colour x dash x marker).
+  const catalog = (await (await fetch(base + '/openapi.json')).json())['x-lienewton'];
+  assert.ok(catalog.series_styles.length >= 24);
+  const legend = await panel.locator('#work-precision-chart .u-legend .u-series').allInnerTexts();
+  assert.equal(legend.length, ticked);
+  wp.series.forEach((ser, i) => {
+    if (ser.fitted_order !== null) assert.ok(legend[i].includes(`p \u2248 ${ser.fitted_order.toFixed(2)}`), legend[i]);
+  });
+  // Implicit Euler is first order, DIRK-CG2 second (rigid body, exact Newton).
+  const order = (integrator) => wp.series.find((x) => x.choice.integrator === integrator && x.choice.method === 'newton-group').fitted_order;
+  assert.ok(Math.abs(order('implicit-euler') - 1) < 0.25, `implicit Euler p = ${order('implicit-euler')}`);
+  assert.ok(Math.abs(order('dirk-cg2') - 2) < 0.35, `DIRK-CG2 p = ${order('dirk-cg2')}`);
+  // The lines join each series' h in order: the plotted x of series i are its points sorted by decreasing h.
+  const plotted = await page.evaluate(() => window.__lienewtonCharts?.['work-precision-chart']);
+  wp.series.forEach((ser, i) => {
+    const expected = ser.points.filter((p) => p.cpu_seconds > 0 && p.error > 0).sort((a, b) => b.h - a.h).map((p) => p.cpu_seconds);
+    assert.deepEqual(plotted.xs[i], expected);
+    assert.deepEqual(plotted.styles[i], { color: catalog.series_styles[i].color, marker: catalog.series_styles[i].marker });
+  });
+  // Clicking a legend entry hides its line; clicking again shows it.
+  const entry = panel.locator('#work-precision-chart .u-legend .u-series').first();
+  await entry.click();
+  assert.match(await entry.getAttribute('class'), /u-off/);
+  await entry.click();
+  assert.doesNotMatch(await entry.getAttribute('class'), /u-off/);
+  // Hover over a marker reads back that point's h, CPU time, error and iterations.
+  await page.locator('#work-precision-chart').scrollIntoViewIfNeeded();
+  const at = await page.evaluate(() => window.__lienewtonCharts['work-precision-chart'].firstMarker());
+  await page.mouse.move(at.x + 20, at.y + 20);
+  await page.mouse.move(at.x, at.y, { steps: 4 });
+  await page.locator('#work-precision-hover', { hasText: 'iterations,' }).or(page.locator('#work-precision-hover', { hasText: / iterations$/ })).first().waitFor();
+  const hover = await text('#work-precision-hover');
+  assert.match(hover, /h = .*solver CPU time .*global error .*iterations/);
   await panel.locator('#energy-table tbody tr').nth(ticked - 1).waitFor({ timeout: 40_000 });
   assert.equal(await page.locator('#work-precision-chart').getAttribute('data-series'), String(ticked));
   assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));

@@ -1,7 +1,7 @@
 // Compare panel: one problem solved by several method/differential pairs, one after the other (the server
 // caps concurrent streams), with every residual curve on one chart and a results table.
 import { ApiError, stream } from '../shared/api.js';
-import { residualChart } from '../shared/chart.js';
+import { residualChart, residualTimeChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix } from '../shared/fields.js';
 import { checkedValues, runner } from '../shared/form.js';
@@ -27,8 +27,15 @@ export function createComparePanel(root) {
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the methods to compare and press Run.');
   const chartBox = el('div', { class: 'chart', id: 'compare-chart' });
+  const timeBox = el('div', { class: 'chart', id: 'compare-time-chart' });
   const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
-  root.append(form, el('div', { class: 'output' }, live, chartBox, tableBox));
+  root.append(form, el('div', { class: 'output' }, live,
+    el('div', { class: 'chart-pair' },
+      el('figure', {}, el('figcaption', {}, 'Residual against solver CPU time (speed vs accuracy)'), timeBox),
+      el('figure', {}, el('figcaption', {}, 'Residual against iteration n'), chartBox)),
+    el('p', { class: 'hint' }, 'Times are the solver\u2019s own CPU time (cpu_seconds of each trace record), not the '
+      + 'HTTP round trip. \u201cTime to tol\u201d is the CPU time of the first iterate with \u2016f\u2016 \u2264 tol.'),
+    tableBox));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -36,11 +43,14 @@ export function createComparePanel(root) {
     const picks = checkedValues(form, 'runs').map((v) => v.split('|'));
     const labels = picks.map(([m, d]) => runLabel(m, d));
     const columns = picks.map(() => []);
+    const times = picks.map(() => [[], []]);
     const rows = [];
     tableBox.replaceChildren();
     await start(async (signal, progress) => {
       if (!picks.length) throw new ApiError('Tick at least one method.', { field: 'runs' });
       const chart = residualChart(chartBox, labels);
+      const timeChart = residualTimeChart(timeBox, labels);
+      const { tol } = readCommon(form);
       progress.max = picks.length;
       for (const [i, [method, differential]] of picks.entries()) {
         const request = { ...readCommon(form), method, differential, include_iterates: false };
@@ -48,11 +58,15 @@ export function createComparePanel(root) {
         const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
           if (rec.type !== 'iteration') return;
           columns[i].push(rec.residual);
+          times[i][0].push(rec.cpu_seconds);
+          times[i][1].push(rec.residual);
           chart.set(columns);
+          timeChart.set(times);
         } });
         chart.set(columns);
+        timeChart.set(times);
         progress.value = i + 1;
-        rows.push([labels[i], result]);
+        rows.push([labels[i], result, timeToTol(times[i], tol)]);
         tableBox.replaceChildren(resultsTable(rows));
       }
       live.textContent = `Compared ${picks.length} runs.`;
@@ -60,12 +74,20 @@ export function createComparePanel(root) {
   });
 }
 
+// CPU seconds of the first iterate whose residual is at most tol, or null when none is.
+function timeToTol([cpu, residual], tol) {
+  const k = residual.findIndex((r) => typeof r === 'number' && r <= tol);
+  return k < 0 ? null : cpu[k];
+}
+
 function resultsTable(rows) {
-  const head = ['Method', 'Status', 'Why', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time'];
+  const head = ['Method', 'Status', 'Why', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time to tol (CPU)',
+    'Solver CPU time'];
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
-    el('tbody', {}, rows.map(([name, r]) => el('tr', {},
+    el('tbody', {}, rows.map(([name, r, ttol]) => el('tr', {},
       el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', { class: 'why' }, r.reason ?? ''),
       el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
-      el('td', {}, fmtSeconds(r.seconds))))));
+      el('td', { 'data-col': 'time-to-tol' }, ttol === null ? 'not reached' : fmtSeconds(ttol)),
+      el('td', {}, fmtSeconds(r.cpu_seconds))))));
 }

@@ -18,6 +18,12 @@ function choiceLabel({ integrator, method, differential }) {
   return `${label(INTEGRATORS, integrator)} \u00b7 ${m.short}${d}`;
 }
 
+// The legend entry: the choice and its fitted order p (slope of log error vs log h).
+function seriesLabel(s) {
+  const p = s.fitted_order;
+  return `${choiceLabel(s.choice)}${p === null || p === undefined ? '' : ` (p \u2248 ${p.toFixed(2)})`}`;
+}
+
 const ROWS = entries('integrator').flatMap((i) => entries('method').map((m) => ({ key: `${i.value}|${m.value}`,
   text: `${i.short}, ${m.short}`, single: !m.uses_differential })));
 
@@ -42,12 +48,15 @@ export function createSpeedPanel(root) {
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the choices to compare and press Run.');
   const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
   const energyBox = el('div', { class: 'chart', id: 'energy-chart' });
+  const wpHover = el('p', { class: 'hint', id: 'work-precision-hover', 'aria-live': 'polite' });
   const energyFig = el('section', { class: 'energy', hidden: true },
     el('h3', {}, 'Rigid body: energy error over time'), energyBox);
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
   root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
-    el('p', { class: 'hint' }, 'Each point is one step size h: its CPU time and its global error at t_end.'),
-    wpBox, energyFig, tableBox));
+    el('p', { class: 'hint' }, 'One line per choice through its step sizes h (largest h at the left end); '
+      + 'x is the solver\u2019s own CPU time (cpu_seconds), y the global error at t_end. p is the fitted order '
+      + '(slope of log error against log h). Click a legend entry to hide or show its line.'),
+    wpBox, wpHover, energyFig, tableBox));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -70,7 +79,7 @@ export function createSpeedPanel(root) {
       const h = Array.from({ length: hi - lo + 1 }, (_, i) => 2 ** (hi - i));
       live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes\u2026`;
       const wp = await postJSON('/api/v1/work-precision', { ...common, choices, h }, { signal });
-      workPrecisionChart(wpBox, wp.series.map((s) => ({ label: choiceLabel(s.choice), points: s.points })));
+      workPrecisionChart(wpBox, wp.series.map((s) => ({ label: seriesLabel(s), points: s.points })), wpHover);
       live.textContent = `Work precision done in ${fmtSeconds(wp.seconds)}.`;
       if (common.problem !== 'rigid-body') return;
       progress.max = choices.length;
@@ -93,13 +102,13 @@ export function createSpeedPanel(root) {
   });
 }
 
-// Energy relative to the first step's, so that drift is visible whatever E's size; runs that stopped
+// Energy relative to E(0), so that drift is visible whatever E's size; runs that stopped
 // early are padded with gaps.
 function drawEnergy(box, runs) {
   const longest = runs.reduce((a, r) => (r.result.steps.length > a.length ? r.result.steps : a), []);
   const times = longest.map((s) => s.t);
   energyChart(box, times, runs.map(({ choice, result }) => {
-    const e0 = result.steps[0]?.energy;
+    const e0 = result.initial_energy;
     return { label: choiceLabel(choice),
       values: times.map((_, k) => (k < result.steps.length && e0 ? (result.steps[k].energy - e0) / e0 : null)) };
   }));

@@ -2,7 +2,7 @@
 // container's width, and records how many points and series it draws in data-points / data-series so
 // that the browser tests check what is actually plotted.
 import uPlot from '../vendor/uPlot.esm.js';
-import { SERIES_COLORS, fmtExp, fmtSeconds } from './labels.js';
+import { SERIES_COLORS, SERIES_STYLES, fmtExp, fmtH, fmtSeconds } from './labels.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.
 function logAxisValues(u, splits, axisIdx) {
@@ -65,14 +65,23 @@ function line(label, i, extra = {}) {
   return { label, stroke: SERIES_COLORS[i % SERIES_COLORS.length], width: 2, value: (u, v) => fmtExp(v), ...extra };
 }
 
+// A series in the i-th server style: colour and dash, with markers (drawn by drawMarkers) so that identical
+// curves stay visible under one another.
+function styledLine(label, i) {
+  const st = seriesStyle(i);
+  return { label, stroke: st.color, dash: st.dash, width: 2, _color: st.color, _marker: st.marker,
+    points: { show: false }, value: (u, v) => fmtExp(v) };
+}
+
 // Residual ||f(y_n)|| against n on a log axis, one series per run; xs are iteration numbers.
 export function residualChart(container, labels) {
-  const series = [{ label: 'n' }].concat(labels.map((text, i) => line(text, i, { points: { show: true, size: 6 } })));
+  const series = [{ label: 'n' }].concat(labels.map((text, i) => styledLine(text, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
     axes: [{ label: 'iteration n' }, logAxis('\u2016f(y\u2099)\u2016')],
     legend: { live: true },
+    hooks: { draw: [drawMarkers] },
   };
   const plot = mount(container, opts, [[], ...labels.map(() => [])]);
   record(container, plot);
@@ -87,40 +96,159 @@ export function residualChart(container, labels) {
   };
 }
 
-// Work-precision: CPU seconds (x) against global error (y), both log, one series per choice. Points only:
-// CPU times of short runs are noisy, and a line in CPU order would zigzag.
-export function workPrecisionChart(container, runs) {
+// Markers of the server's series styles (x-lienewton.series_styles), drawn r pixels from the centre.
+const MARKERS = {
+  circle: (c, x, y, r) => c.arc(x, y, r, 0, 2 * Math.PI),
+  square: (c, x, y, r) => c.rect(x - r, y - r, 2 * r, 2 * r),
+  triangle_up: (c, x, y, r) => { c.moveTo(x, y - r); c.lineTo(x + r, y + r); c.lineTo(x - r, y + r); c.closePath(); },
+  triangle_down: (c, x, y, r) => { c.moveTo(x, y + r); c.lineTo(x + r, y - r); c.lineTo(x - r, y - r); c.closePath(); },
+  diamond: (c, x, y, r) => { c.moveTo(x, y - r); c.lineTo(x + r, y); c.lineTo(x, y + r); c.lineTo(x - r, y); c.closePath(); },
+  cross: (c, x, y, r) => { c.moveTo(x - r, y - r); c.lineTo(x + r, y + r); c.moveTo(x + r, y - r); c.lineTo(x - r, y + r); },
+};
+
+export function seriesStyle(i) {
+  const s = SERIES_STYLES[i % SERIES_STYLES.length];
+  return { color: s.color, dash: s.dash_pattern?.length ? s.dash_pattern : undefined, marker: s.marker };
+}
+
+// Draws each shown series' markers at its points (uPlot draws only circles).
+function drawMarkers(u) {
+  const c = u.ctx;
+  const r = 4.5 * devicePixelRatio;
+  c.save();
+  c.lineWidth = 1.5 * devicePixelRatio;
+  for (let i = 1; i < u.series.length; i++) {
+    const s = u.series[i];
+    if (!s.show) continue;
+    const [xs, ys] = u.mode === 2 ? u.data[i] : [u.data[0], u.data[i]];
+    c.beginPath();
+    for (let k = 0; k < xs.length; k++) {
+      if (ys[k] == null) continue;
+      const x = u.valToPos(xs[k], 'x', true);
+      const y = u.valToPos(ys[k], 'y', true);
+      c.moveTo(x + r, y);
+      MARKERS[s._marker]?.(c, x, y, r);
+    }
+    c.fillStyle = s._color;
+    c.strokeStyle = s._color;
+    if (s._marker === 'cross') c.stroke(); else { c.fill(); c.stroke(); }
+  }
+  c.restore();
+}
+
+// The point nearest the cursor (within 14 px) among shown series: [series index, point index] or null.
+function nearest(u) {
+  const { left, top } = u.cursor;
+  if (left == null || left < 0) return null;
+  let best = null; let bestD = 14 * 14;
+  for (let i = 1; i < u.series.length; i++) {
+    if (!u.series[i].show) continue;
+    const [xs, ys] = u.data[i];
+    for (let k = 0; k < xs.length; k++) {
+      const d = (u.valToPos(xs[k], 'x') - left) ** 2 + (u.valToPos(ys[k], 'y') - top) ** 2;
+      if (d < bestD) { bestD = d; best = [i, k]; }
+    }
+  }
+  return best;
+}
+
+// Work-precision diagram (as in Hairer-Wanner or DiffEqDevTools): solver CPU seconds (x) against global error
+// (y), both log; one line per choice joining its step sizes in order of h, with its style's colour, dash and
+// marker, and its fitted order p in the legend. Clicking a legend entry hides or shows that series. Hovering a
+// marker shows its h, CPU time, error and iterations in `hover`. uPlot's mode 2: every series has its own xs.
+export function workPrecisionChart(container, runs, hover) {
   const tables = runs.map((r) => {
-    const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.error))
-      .sort((a, b) => a.cpu_seconds - b.cpu_seconds);
-    return [pts.map((p) => p.cpu_seconds), pts.map((p) => p.error)];
+    const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.error)).sort((a, b) => b.h - a.h);
+    return { pts, xy: [pts.map((p) => p.cpu_seconds), pts.map((p) => p.error)] };
   });
-  const data = tables.length ? uPlot.join(tables) : [[]];
-  const series = [{ label: 'CPU time', value: (u, v) => fmtSeconds(v) }].concat(runs.map((r, i) =>
-    line(r.label, i, { points: { show: true, size: 8, fill: SERIES_COLORS[i % SERIES_COLORS.length] }, paths: () => null })));
-  const opts = {
-    series,
-    scales: { x: { time: false, distr: 3, log: 10, range: decades }, y: { distr: 3, log: 10, range: decades } },
-    axes: [logAxis('CPU time [s]', { size: 50 }), logAxis('global error at t_end')],
-    legend: { live: true },
-    height: 340,
+  const all = (k) => tables.flatMap((t) => t.xy[k]);
+  const xr = decades(null, Math.min(...all(0)), Math.max(...all(0)));
+  const yr = decades(null, Math.min(...all(1)), Math.max(...all(1)));
+  const series = [{}].concat(runs.map((r, i) => {
+    const st = seriesStyle(i);
+    return { label: r.label, stroke: st.color, dash: st.dash, width: 2, _color: st.color, _marker: st.marker,
+      facets: [{ scale: 'x', auto: false }, { scale: 'y', auto: false }], paths: uPlot.paths.linear(),
+      points: { show: false } };
+  }));
+  const show = (u) => {
+    const hit = nearest(u);
+    if (!hit) { hover.textContent = 'Hover a marker to read its h, CPU time, error and iterations.'; return; }
+    const [i, k] = hit;
+    const p = tables[i - 1].pts[k];
+    hover.textContent = `${runs[i - 1].label}: h = ${fmtH(p.h)}, solver CPU time ${fmtSeconds(p.cpu_seconds)}, ` +
+      `global error ${fmtExp(p.error)}, ${p.iterations} iterations`;
+    hover.dataset.h = String(p.h);
   };
-  const plot = mount(container, opts, data);
-  record(container, plot);
+  const opts = {
+    mode: 2,
+    series,
+    scales: { x: { time: false, distr: 3, log: 10, range: () => xr }, y: { distr: 3, log: 10, range: () => yr } },
+    axes: [logAxis('solver CPU time [s]', { size: 50 }), logAxis('global error at t_end')],
+    legend: { live: false },
+    cursor: { drag: { x: false, y: false }, points: { show: false } },
+    hooks: { draw: [drawMarkers], setCursor: [show] },
+    height: 380,
+  };
+  const plot = mount(container, opts, [null, ...tables.map((t) => t.xy)]);
+  container.dataset.points = String(tables.reduce((a, t) => a + t.pts.length, 0));
+  container.dataset.series = String(runs.length);
+  show(plot);
+  // What is plotted, for the browser tests (as data-points / data-series are): xs per series in drawing
+  // order, each series' style, and the page position of the first marker.
+  (window.__lienewtonCharts ??= {})[container.id] = {
+    xs: tables.map((t) => t.xy[0]),
+    styles: runs.map((_, i) => ({ color: seriesStyle(i).color, marker: seriesStyle(i).marker })),
+    firstMarker() {
+      const box = plot.over.getBoundingClientRect();
+      return { x: box.left + plot.valToPos(tables[0].xy[0][0], 'x'), y: box.top + plot.valToPos(tables[0].xy[1][0], 'y') };
+    },
+  };
   return plot;
 }
 
-// Rigid-body energy error over time, |E(t) - E(t1)| / E(t1) on a log axis so that drifts of very different
+// Rigid-body energy error over time, |E(t) - E(0)| / E(0) on a log axis so that drifts of very different
 // sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same step times.
 export function energyChart(container, times, runs) {
   const series = [{ label: 't' }].concat(runs.map((r, i) => line(r.label, i, { points: { show: true, size: 5 } })));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
-    axes: [{ label: 'time t' }, logAxis('|E(t) \u2212 E(t\u2081)| / E(t\u2081)')],
+    axes: [{ label: 'time t' }, logAxis('|E(t) \u2212 E(0)| / E(0)')],
     legend: { live: true },
   };
   const plot = mount(container, opts, [times, ...runs.map((r) => r.values.map((v) => positive(Math.abs(v))))]);
   record(container, plot);
   return plot;
+}
+
+// Solver speed against accuracy: ||f(y_n)|| (y) against the solver's cumulative CPU time (x), both log, one
+// line per run in the server's styles. set(tables) takes per run [cpu_seconds[], residual[]] so far.
+export function residualTimeChart(container, labels) {
+  const series = [{}].concat(labels.map((text, i) => ({ ...styledLine(text, i), paths: uPlot.paths.linear(),
+    facets: [{ scale: 'x', auto: false }, { scale: 'y', auto: false }] })));
+  let xr = [1e-6, 1e-3]; let yr = [1e-16, 1];
+  const opts = {
+    mode: 2,
+    series,
+    scales: { x: { time: false, distr: 3, log: 10, range: () => xr }, y: { distr: 3, log: 10, range: () => yr } },
+    axes: [logAxis('solver CPU time [s] (cpu_seconds)', { size: 50 }), logAxis('\u2016f(y\u2099)\u2016')],
+    legend: { live: false },
+    cursor: { drag: { x: false, y: false }, points: { show: false } },
+    hooks: { draw: [drawMarkers] },
+  };
+  const plot = mount(container, opts, [null, ...labels.map(() => [[], []])]);
+  return {
+    set(tables) {
+      const clean = tables.map(([xs, ys]) => {
+        const keep = xs.map((x, k) => positive(x) && positive(ys[k]));
+        return [xs.filter((_, k) => keep[k]), ys.filter((_, k) => keep[k])];
+      });
+      const xsAll = clean.flatMap((t) => t[0]);
+      const ysAll = clean.flatMap((t) => t[1]);
+      if (xsAll.length) { xr = decades(null, Math.min(...xsAll), Math.max(...xsAll)); yr = decades(null, Math.min(...ysAll), Math.max(...ysAll)); }
+      plot.setData([null, ...clean]);
+      container.dataset.points = String(xsAll.length);
+      container.dataset.series = String(labels.length);
+    },
+  };
 }

@@ -56,13 +56,19 @@ export function runner(form, live) {
   const progress = form.querySelector('progress');
   let controller = null;
   cancel.addEventListener('click', () => controller?.abort());
-  form.addEventListener('keydown', (e) => { if (e.key === 'Escape' && controller) controller.abort(); });
+  // Esc cancels this form's run wherever focus is (clicking Run disables it and focus falls to the body),
+  // as long as the form's panel is the one shown.
+  document.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape' && controller && form.offsetParent !== null) controller.abort();
+  });
   return async function start(task) {
     controller?.abort();
     const mine = (controller = new AbortController());
     clearErrors(form);
+    const hadFocus = document.activeElement === run;
     run.disabled = true;
     cancel.disabled = false;
+    if (hadFocus) cancel.focus();
     progress.hidden = false;
     progress.removeAttribute('value');
     form.setAttribute('aria-busy', 'true');

@@ -1,6 +1,6 @@
 // Names and colours shared by every panel: API values -> words a reader understands (from the server's
 // catalog), plus number formats.
-import { choices, entries } from './catalog.js';
+import { catalog, choices, entries } from './catalog.js';
 
 export const PROBLEMS = choices('problem');
 export const METHODS = choices('method');
@@ -16,6 +16,9 @@ export const STATUSES = Object.fromEntries(entries('status').map((s) => [s.value
 
 export const SERIES_COLORS = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000',
   '#8c564b', '#7f7f7f', '#bcbd22'];
+
+// Colour x dash x marker per series, distinct for 24 series: the renderer's own table, so PNGs match.
+export const SERIES_STYLES = catalog.series_styles;
 
 export function label(list, value) {
   const hit = list.find(([v]) => v === value);

@@ -14,8 +14,15 @@ export function resultList(result) {
     row('status', 'Status', statusBadge(result.status)),
     row('reason', 'Why', result.reason || STATUSES[result.status]?.text || ''),
     row('iterations', 'Iterations', String(result.iterations)),
-    row('rate', 'Rate r', result.rate === null || result.rate === undefined ? '\u2014 (needs 3 iterations)' : fmtRate(result.rate)),
+    row('rate', 'Rate r', rateText(result)),
     row('residual', 'Final \u2016f(y)\u2016', fmtExp(result.residual)),
     row('orthogonality_error', '\u2016y\u1d40y \u2212 I\u2016', fmtExp(result.orthogonality_error)),
-    row('seconds', 'Time', fmtSeconds(result.seconds)));
+    row('cpu_seconds', 'Solver CPU time', fmtSeconds(result.cpu_seconds)),
+    row('seconds', 'Wall time (server)', fmtSeconds(result.seconds)));
+}
+
+// r needs three iterations; a longer run without one has no measurable rate (e.g. it never settled).
+function rateText({ rate, iterations }) {
+  if (rate !== null && rate !== undefined) return fmtRate(rate);
+  return iterations < 3 ? '\u2014 (needs 3 iterations)' : '\u2014 (not measurable)';
 }
