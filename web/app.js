@@ -27,6 +27,11 @@ document.querySelector('[role="tablist"]').addEventListener('keydown', (e) => {
   select(tabs[(next + tabs.length) % tabs.length]);
 });
 for (const t of tabs) t.addEventListener('click', () => select(t));
+// The skip link (first Tab stop) moves focus to the selected tab, from where the arrows switch panels.
+document.querySelector('.skip-link').addEventListener('click', (e) => {
+  e.preventDefault();
+  tabs.find((t) => t.getAttribute('aria-selected') === 'true').focus();
+});
 
 const solve = createSolvePanel(document.querySelector('#solve .panel-body'));
 createComparePanel(document.querySelector('#compare .panel-body'));
@@ -40,9 +45,19 @@ createSpeedPanel(document.querySelector('#speed .panel-body'));
 
 const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
 select(fromHash() ?? tabs[0], false);
-// A #panel address picks the tab; the page still opens at the top (header and tab bar in view on a phone).
-window.scrollTo(0, 0);
-window.addEventListener('hashchange', () => { const t = fromHash(); if (t) select(t, false); });
+// A #panel address picks the tab; the page still opens at the top (header and tab bar in view on a phone),
+// and the fragment is not where Tab starts: focusing the body makes the skip link the first Tab stop.
+function toTop() {
+  window.scrollTo(0, 0);
+  document.body.tabIndex = -1;
+  document.body.focus({ preventScroll: true });
+  document.body.removeAttribute('tabindex');
+}
+toTop();
+window.addEventListener('hashchange', () => {
+  const t = fromHash();
+  if (t) { select(t, false); toTop(); }
+});
 
 // A small liveness light in the header: the dashboard is static, the numbers come from the service.
 const light = document.getElementById('server-state');

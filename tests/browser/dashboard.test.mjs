@@ -80,6 +80,41 @@ test('page loads with no console errors and nothing fetched from outside', async
   await tab('Solve');
 });
 
+test('first Tab reaches the skip link, which leads to the tabs; no chart before the first run', async () => {
+  await page.goto('about:blank');
+  await page.goto(base + '/#solve');
+  await page.locator('#server-state[data-ok="true"]').waitFor();
+  assert.equal(await page.evaluate(() => scrollY), 0);
+  await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.outerHTML.slice(0, 60)), await page.evaluate(() => document.querySelector('.skip-link').outerHTML.slice(0, 60)));
+  await page.keyboard.press('Enter');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'tab-solve');
+  // Before any run the chart box is an empty placeholder (no axes, no grid).
+  assert.equal(await page.locator('#solve-chart').innerHTML(), '');
+  assert.match(await page.evaluate(() => getComputedStyle(document.querySelector('#solve-chart'), '::before').content),
+    /after Run/);
+});
+
+test('a bad range entry is flagged on its own box and named by its symbol', async () => {
+  await tab('Stability map');
+  const panel = page.locator('#stability');
+  await panel.locator('input[name="k_lo"]').fill('3');
+  await panel.locator('input[name="k_hi"]').fill('1');
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const slot = panel.locator('.field[data-field="h"] .field-error');
+  await slot.filter({ hasText: /\S/ }).waitFor();
+  assert.equal(await slot.innerText(), 'k from (3) is above k to (1).');
+  assert.equal(await panel.locator('input[name="k_hi"]').getAttribute('aria-invalid'), 'true');
+  assert.equal(await panel.locator('input[name="k_lo"]').getAttribute('aria-invalid'), null);
+  await panel.locator('input[name="k_lo"]').fill('1.5');
+  await panel.getByRole('button', { name: 'Run' }).click();
+  await slot.filter({ hasText: 'k from: give a whole number' }).waitFor();
+  assert.equal(await panel.locator('input[name="k_lo"]').getAttribute('aria-invalid'), 'true');
+  await panel.locator('input[name="k_lo"]').fill('-10');
+  await panel.locator('input[name="k_hi"]').fill('10');
+  await tab('Solve');
+});
+
 test('labels and colours come from the server catalog; no panel shows "undefined"', async () => {
   const catalog = (await (await fetch(base + '/openapi.json')).json())['x-lienewton'];
   const methods = await page.locator('#solve').getByLabel('Method').locator('option').allInnerTexts();

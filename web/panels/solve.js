@@ -28,7 +28,7 @@ export function createSolvePanel(root) {
   root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames), table));
 
   const newChart = () => residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
-  let chart = newChart();
+  let chart = null; // none before the first run: the box shows a placeholder
   const start = runner(form, live);
   let frameUrl = null;
 

@@ -4,7 +4,7 @@ import { ApiError, postJSON } from '../shared/api.js';
 import { energyChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix, number, range, select } from '../shared/fields.js';
-import { checkedValues, runner, value } from '../shared/form.js';
+import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { statusBadge } from '../shared/summary.js';
@@ -71,12 +71,7 @@ export function createSpeedPanel(root) {
     tableBox.replaceChildren();
     await start(async (signal, progress) => {
       if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
-      const lo = value(form, 'k_lo');
-      const hi = value(form, 'k_hi');
-      if (!Number.isInteger(lo) || !Number.isInteger(hi) || lo > hi) {
-        throw new ApiError('Give two whole numbers, the first not above the second.', { field: 'h' });
-      }
-      const h = Array.from({ length: hi - lo + 1 }, (_, i) => 2 ** (hi - i));
+      const h = wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
       live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes\u2026`;
       const wp = await postJSON('/api/v1/work-precision', { ...common, choices, h }, { signal });
       workPrecisionChart(wpBox, wp.series.map((s) => ({ label: seriesLabel(s), points: s.points })), wpHover);

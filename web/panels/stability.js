@@ -4,22 +4,13 @@
 import { ApiError, postImage, stream } from '../shared/api.js';
 import { el } from '../shared/dom.js';
 import { actions, checkboxes, number, range, select } from '../shared/fields.js';
-import { checkedValues, runner, value } from '../shared/form.js';
+import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from '../shared/labels.js';
 import { NO_VALUE, metricScale, metricValue, rampCss } from '../shared/colormap.js';
 import { createGrid } from './grid.js';
 import { statusBadge } from '../shared/summary.js';
 
 const METHOD_ORDER = METHODS.map(([m]) => m);
-
-function integers(form, loName, hiName, field) {
-  const lo = value(form, loName);
-  const hi = value(form, hiName);
-  if (!Number.isInteger(lo) || !Number.isInteger(hi) || lo > hi) {
-    throw new ApiError('Give two whole numbers, the first not above the second.', { field });
-  }
-  return Array.from({ length: hi - lo + 1 }, (_, i) => lo + i);
-}
 
 export function createStabilityPanel(root, { openSolve }) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Sweep request' },
@@ -84,8 +75,8 @@ export function createStabilityPanel(root, { openSolve }) {
     e.preventDefault();
     await start(async (signal, progress) => {
       const request = { problem: value(form, 'problem'), methods: checkedValues(form, 'methods'),
-        differential: value(form, 'differential'), n: integers(form, 'n_lo', 'n_hi', 'n'),
-        h: integers(form, 'k_lo', 'k_hi', 'h').map((k) => 2 ** k), seed: value(form, 'seed'),
+        differential: value(form, 'differential'), n: wholeRange(form, 'n_lo', 'n_hi', 'N'),
+        h: wholeRange(form, 'k_lo', 'k_hi', 'k').map((k) => 2 ** k), seed: value(form, 'seed'),
         tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations') };
       const grids = request.methods.map((method) => createGrid({ method, ns: request.n, hs: request.h,
         onShow: show, onOpen: openCell }));

@@ -17,8 +17,16 @@ function logAxisValues(u, splits, axisIdx) {
   });
 }
 
+// Over more than 4 decades only whole decades get ticks and grid lines: the 1..9 sub-decade lines of a
+// 16-decade axis would read as grey banding.
+function decadeFilter(u, splits, axisIdx) {
+  const { min, max } = u.scales[u.axes[axisIdx].scale];
+  if (Math.log10(max / min) <= 4) return splits;
+  return splits.map((v) => (v != null && Math.abs(Math.log10(v) - Math.round(Math.log10(v))) < 1e-9 ? v : null));
+}
+
 function logAxis(label, extra = {}) {
-  return { label, values: logAxisValues, size: 60, space: 24, gap: 4, ...extra };
+  return { label, values: logAxisValues, filter: decadeFilter, size: 60, space: 24, gap: 4, ...extra };
 }
 
 // Log scales cannot show 0 or negative values: those become gaps, the x count is kept.

@@ -30,13 +30,28 @@ export function clearErrors(form) {
   if (general) general.textContent = '';
 }
 
-// "h", "n[3]", "choices[1].method" -> the field wrapper named by the leading identifier.
+// The whole numbers lo..hi typed in the two boxes of a range field (e.g. k_lo, k_hi of "h = 2^k"). A bad
+// entry is reported against the box that holds it, in terms of the symbol the user typed.
+export function wholeRange(form, loName, hiName, symbol) {
+  const lo = value(form, loName);
+  const hi = value(form, hiName);
+  for (const [name, v, end] of [[loName, lo, 'from'], [hiName, hi, 'to']]) {
+    if (!Number.isInteger(v)) throw new ApiError(`${symbol} ${end}: give a whole number (got \u201c${v}\u201d).`, { field: name });
+  }
+  if (lo > hi) throw new ApiError(`${symbol} from (${lo}) is above ${symbol} to (${hi}).`, { field: hiName });
+  return Array.from({ length: hi - lo + 1 }, (_, i) => lo + i);
+}
+
+// "h", "n[3]", "choices[1].method" -> the field wrapper named by the leading identifier; a field that is
+// itself an input's name (k_lo) flags that input.
 export function showError(form, err) {
-  const name = err instanceof ApiError && err.field ? String(err.field).match(/^[A-Za-z_]+/)?.[0] : null;
-  const wrapper = name && form.querySelector(`.field[data-field="${name}"]`);
+  const field = err instanceof ApiError && err.field ? String(err.field) : null;
+  const name = field?.match(/^[A-Za-z_]+/)?.[0];
+  const own = field && form.querySelector(`input[name="${CSS.escape(field)}"]`);
+  const wrapper = own?.closest('.field') ?? (name && form.querySelector(`.field[data-field="${name}"]`));
   if (wrapper) {
     wrapper.querySelector('.field-error').textContent = err.message;
-    const input = wrapper.querySelector('input[name], select[name]');
+    const input = own ?? wrapper.querySelector('input[name], select[name]');
     if (input) {
       input.setAttribute('aria-invalid', 'true');
       input.focus();
