@@ -54,7 +54,7 @@ function near(shown, expected, abs, rel) {
 
 // Every panel's visible text, tab by tab, free of the marks of a missing label or value.
 async function everyPanelReadsWell() {
-  const broken = /.{0,40}(undefined|\[object Object\]).{0,40}/;
+  const broken = /.{0,40}(undefined|\[object Object\]|\bnull\b).{0,40}/;
   for (const name of ['Solve', 'Compare', 'Stability map', 'Speed vs accuracy']) {
     await tab(name);
     const hit = (await page.locator('main').innerText()).match(broken);
@@ -188,6 +188,10 @@ test('Esc cancels a run started by clicking Run', async () => {
   await page.keyboard.press('Escape');
   await panel.locator('.form-error', { hasText: 'Cancelled.' }).waitFor();
   assert.equal(await panel.getByRole('button', { name: 'Run' }).isEnabled(), true);
+  // The legend counts the cells never computed, as many as the grid shows pending.
+  const pending = await panel.locator('.cell.pending').count();
+  assert.ok(pending > 0);
+  assert.match(await text('#stability-legend [data-legend="missing"]'), new RegExp(`\\(${pending}\\)$`));
 });
 
 test('a sweep renders the heatmap and hovering a cell shows that cell', async () => {
@@ -226,6 +230,13 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
     near(await detail('rate'), cell.rate, 5e-4, 0);
     near(await detail('residual'), cell.residual, 0, 5e-4);
   }
+  // Rate colouring is clamped to 0..3; cells outside are marked and counted in the legend.
+  await panel.getByLabel('Colour converged cells by').selectOption('rate');
+  const outliers = sweep.cells.filter((c) => c.status === 'converged' && Number.isFinite(c.rate) && (c.rate < 0 || c.rate > 3));
+  assert.equal(await panel.locator('.cell.outlier').count(), outliers.length);
+  assert.match(await text('#stability-legend [data-legend="outliers"]'), new RegExp(`\\(${outliers.length}\\)\\.?$`));
+  await page.locator('#heatmap-img').waitFor();
+  await panel.getByLabel('Colour converged cells by').selectOption('iterations');
   // Keyboard: the grid is one tab stop; arrows move between cells and show their numbers.
   const first = sweep.cells[0];
   await panel.locator(`.cell[data-method="${first.method}"][data-n="${first.n}"][data-h="${first.h}"]`).focus();
@@ -294,6 +305,20 @@ test('the work-precision chart has one series per ticked choice', async () => {
 });
 
 test('after every panel has run, none shows "undefined"', everyPanelReadsWell);
+
+// docs/screenshots/ holds copies of these (README): each panel after its run, at a laptop and a phone size.
+test('screenshots of every panel at 1440x900 and 390x844', async () => {
+  for (const [w, hgt] of [[1440, 900], [390, 844]]) {
+    await page.setViewportSize({ width: w, height: hgt });
+    for (const [name, id] of [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Speed vs accuracy', 'speed']]) {
+      await tab(name);
+      await page.evaluate(() => window.scrollTo(0, 0));
+      await page.waitForTimeout(150); // charts follow the new width on the next frame
+      await shot(`${id}-${w}x${hgt}`);
+    }
+  }
+  await page.setViewportSize({ width: 1280, height: 860 });
+});
 
 test('on a touch phone a first tap shows a cell, a second tap opens it', async () => {
   const phone = await browser.newPage({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });

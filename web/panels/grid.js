@@ -1,7 +1,7 @@
 // An interactive stability map for one method: a CSS grid of cells (x = log2 h ascending, y = N with the
 // largest at the top) coloured from the sweep JSON. It is keyboard navigable as an ARIA grid with a single
 // tab stop: arrows move, Enter opens the cell in the Solve panel; hover or focus shows the numbers.
-import { cellColor } from '../shared/colormap.js';
+import { cellColor, isOutlier } from '../shared/colormap.js';
 import { el } from '../shared/dom.js';
 import { METHODS, STATUSES, label } from '../shared/labels.js';
 
@@ -81,6 +81,7 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
       c.classList.remove('pending');
       c.dataset.status = cell.status;
       c.style.background = cellColor(cell, metric, scale, STATUSES);
+      c.classList.toggle('outlier', isOutlier(cell, metric));
       c.setAttribute('aria-label', `N ${cell.n}, h 2^${Math.log2(cell.h)}: ${cell.status.replace(/_/g, ' ')}, ${cell.iterations} iterations`);
       return true;
     },

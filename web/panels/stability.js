@@ -6,7 +6,7 @@ import { el } from '../shared/dom.js';
 import { actions, checkboxes, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from '../shared/labels.js';
-import { NO_VALUE, metricScale, metricValue, rampCss } from '../shared/colormap.js';
+import { NO_VALUE, isOutlier, metricScale, metricValue, rampCss } from '../shared/colormap.js';
 import { createGrid } from './grid.js';
 import { statusBadge } from '../shared/summary.js';
 
@@ -42,7 +42,8 @@ export function createStabilityPanel(root, { openSolve }) {
     const metric = value(form, 'metric');
     const scale = metricScale(last.cells, metric);
     for (const c of last.cells) last.grids.find((g) => g.set(c, metric, scale));
-    drawLegend(legend, last.cells, scale, metric);
+    const r = last.request;
+    drawLegend(legend, last.cells, scale, metric, r.methods.length * r.n.length * r.h.length);
   }
 
   async function renderImage(signal) {
@@ -121,18 +122,26 @@ function cellOrder(a, b) {
   return METHOD_ORDER.indexOf(a.method) - METHOD_ORDER.indexOf(b.method) || a.n - b.n || a.h - b.h;
 }
 
-function drawLegend(box, cells, scale, metric) {
+// Every cell of the requested grid is counted once: by its status, as an outlier of the clamped rate scale,
+// or as not computed (the sweep was cancelled or stopped before reaching it).
+function drawLegend(box, cells, scale, metric, total) {
   const counts = {};
+  const outliers = cells.filter((c) => isOutlier(c, metric)).length;
+  const missing = total - cells.length;
   for (const c of cells) counts[c.status] = (counts[c.status] ?? 0) + 1;
   const noValue = cells.filter((c) => c.status === 'converged' && metricValue(c, metric) === null).length;
   const fmt = (v) => (metric === 'residual' ? `1e${v.toFixed(1)}` : metric === 'rate' ? v.toFixed(2) : String(v));
   box.replaceChildren(
     el('div', { class: 'ramp' }, el('span', {}, `converged, ${label(METRICS, metric).toLowerCase()}: ${fmt(scale.lo)}`),
       el('span', { class: 'ramp-bar', style: `background:${rampCss()}` }), el('span', {}, fmt(scale.hi))),
+    ...(metric === 'rate' ? [el('p', { class: 'hint', dataset: { legend: 'outliers' } },
+      `Rates outside 0\u20133 are clamped to the ends and marked with a dot (${outliers}).`)] : []),
     el('ul', { class: 'swatches' },
       el('li', { class: noValue ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${NO_VALUE}` }),
         `converged, no ${label(METRICS, metric).toLowerCase()} (${noValue})`),
       Object.entries(STATUSES).filter(([s]) => s !== 'converged').map(([s, info]) =>
       el('li', { class: counts[s] ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${info.color}` }),
-        `${info.text} (${counts[s] ?? 0})`))));
+        `${info.text} (${counts[s] ?? 0})`)),
+      el('li', { class: missing ? '' : 'absent', dataset: { legend: 'missing' } },
+        el('span', { class: 'swatch pending' }), `not reached: the run was cancelled or stopped first (${missing})`)));
 }

@@ -24,8 +24,19 @@ export function metricValue(cell, metric) {
   return Number.isFinite(cell.residual) ? Math.log10(Math.max(Math.abs(cell.residual), 1e-18)) : null;
 }
 
+// Rates are coloured on a fixed 0..3 (linear r = 1, quadratic r = 2, (3.8)-(3.9)): a few wild rates of
+// nearly stagnant runs would otherwise squeeze every meaningful cell into one colour. Cells outside are
+// clamped to the ends and flagged as outliers.
+export const RATE_RANGE = { lo: 0, hi: 3 };
+
+export function isOutlier(cell, metric) {
+  const v = metricValue(cell, metric);
+  return metric === 'rate' && v !== null && (v < RATE_RANGE.lo || v > RATE_RANGE.hi);
+}
+
 // Range of the metric over the converged cells; a single value is widened by one either side.
 export function metricScale(cells, metric) {
+  if (metric === 'rate') return RATE_RANGE;
   const values = cells.map((c) => metricValue(c, metric)).filter((v) => v !== null);
   if (!values.length) return { lo: 0, hi: 1 };
   const lo = Math.min(...values);
