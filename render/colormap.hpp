@@ -15,5 +15,7 @@ Color status_color(Status status);
 
 // Converged cells whose metric has no value (a rate needs three residuals).
 inline constexpr Color kNoValueColor{200, 200, 200, 255};
+// The dot on a cell whose rate lies outside the rate colour range (heatmap_scene.hpp).
+inline constexpr Color kOutlierDotColor{30, 30, 30, 255};
 
 }  // namespace lienewton::render

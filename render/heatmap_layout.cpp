@@ -95,7 +95,10 @@ HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int 
   for (Status status : kAllStatuses) {
     if (status != Status::converged) l.legend.push_back({std::string(to_string(status)), status_color(status)});
   }
-  if (metric == HeatmapMetric::rate) l.legend.push_back({"no rate", kNoValueColor});
+  if (metric == HeatmapMetric::rate) {
+    l.legend.push_back({"no rate", kNoValueColor});
+    l.legend.push_back({"dot: rate outside 0..3", kOutlierDotColor});
+  }
   int legend_label_width = 0;
   for (const LegendEntry& entry : l.legend) {
     legend_label_width = std::max(legend_label_width, text_width(entry.label, TextSize::small));

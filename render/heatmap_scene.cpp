@@ -94,6 +94,14 @@ void draw_legend(Canvas& canvas, const HeatmapLayout& l) {
   }
 }
 
+// A white-ringed dark dot in the cell's middle: readable on both ends of viridis.
+void draw_outlier_dot(Canvas& canvas, const HeatmapLayout& l, float x, float y) {
+  const Point centre{x + 0.5f * l.cell_width, y + 0.5f * l.cell_height};
+  const float size = std::clamp(0.35f * std::min(l.cell_width, l.cell_height), 2.0f, 8.0f);
+  canvas.line(centre, centre, size + 2, kWhite);
+  canvas.line(centre, centre, size, kOutlierDotColor);
+}
+
 }  // namespace
 
 std::optional<double> metric_value(const SweepCell& cell, HeatmapMetric metric) {
@@ -112,7 +120,13 @@ std::optional<double> metric_value(const SweepCell& cell, HeatmapMetric metric) 
 
 Color MetricScale::color(double value) const { return viridis(position(value)); }
 
+bool rate_outlier(const SweepCell& cell) {
+  const auto r = metric_value(cell, HeatmapMetric::rate);
+  return r && (*r < kRateColorLo || *r > kRateColorHi);
+}
+
 MetricScale metric_scale(const HeatmapGrid& grid, HeatmapMetric metric) {
+  if (metric == HeatmapMetric::rate) return {kRateColorLo, kRateColorHi};
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const SweepCell* cell : grid.cells) {
     if (cell == nullptr) continue;
@@ -142,6 +156,7 @@ void draw_heatmap(Canvas& canvas, const HeatmapGrid& grid, const HeatmapLayout& 
         const float x = float(l.panel_x(panel) + j * l.cell_width);
         const float y = float(l.top + (l.rows - 1 - i) * l.cell_height);
         canvas.rect(x, y, x + l.cell_width, y + l.cell_height, cell_color(*cell, metric, scale));
+        if (metric == HeatmapMetric::rate && rate_outlier(*cell)) draw_outlier_dot(canvas, l, x, y);
       }
     }
     draw_panel_axes(canvas, grid, l, panel);

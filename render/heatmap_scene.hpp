@@ -11,7 +11,14 @@ namespace lienewton::render {
 // zero stays drawable). Empty for failed cells and for a converged cell without a (finite) rate.
 std::optional<double> metric_value(const SweepCell& cell, HeatmapMetric metric);
 
-// The colorbar's range: the smallest and largest metric value in the grid (widened by 1 when they are equal).
+// Rates are coloured on this fixed range, where linear (1) and quadratic (2) convergence sit apart whatever
+// else the grid holds; a rate outside it gets the end colour and a dot (a first iteration far from the
+// asymptotic regime can give r = 267).
+inline constexpr double kRateColorLo = 0, kRateColorHi = 3;
+bool rate_outlier(const SweepCell& cell);
+
+// The colorbar's range: the smallest and largest metric value in the grid (widened by 1 when they are equal);
+// for rates [kRateColorLo, kRateColorHi].
 struct MetricScale {
   double lo = 0, hi = 1;
   double position(double value) const { return (value - lo) / (hi - lo); }

@@ -5,6 +5,7 @@
 #include "core/options.hpp"
 #include "core/status.hpp"
 #include "render/colormap.hpp"
+#include "render/heatmap_scene.hpp"
 #include "render/options.hpp"
 #include "render/series_style.hpp"
 
@@ -151,7 +152,9 @@ json openapi_labels() {
             {"linear_solver", entries(kAllLinearSolvers)},
             {"status", statuses},
             {"heatmap_metric", entries(render::kAllHeatmapMetrics)}}},
-          {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()}}},
+          {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()},
+                      {"rate_range", {render::kRateColorLo, render::kRateColorHi}},
+                      {"rate_outlier_dot", css(render::kOutlierDotColor)}}},
           {"series_styles", series_styles()}};
 }
 

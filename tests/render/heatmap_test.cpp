@@ -62,7 +62,9 @@ void expect_cells_colored(const SweepResult& sweep, const HeatmapOptions& option
       for (int j = 0; j < layout.columns; ++j) {
         const SweepCell& c = *grid.at(p, i, j);
         const auto value = metric_value(c, options.metric);
+        const bool dotted = options.metric == HeatmapMetric::rate && rate_outlier(c);  // centre: the dot
         const Color expected = c.status != Status::converged ? status_color(c.status)
+                               : dotted                       ? kOutlierDotColor
                                : value                        ? viridis(scale.position(*value))
                                                               : kNoValueColor;
         const Point center = layout.cell_center(p, i, j);
@@ -102,6 +104,28 @@ TEST(Heatmap, RateCellsMatchTheColormapAndMissingRatesAreGray) {
 
 TEST(Heatmap, ResidualCellsMatchTheColormapAtAGivenSize) {
   expect_cells_colored(tiny_sweep(), {512, 512, HeatmapMetric::residual});
+}
+
+// Rates are coloured on 0..3 whatever the grid holds, so 1 and 2 always look different; the tiny sweep's
+// rates above 3 are outliers, drawn with a dot.
+TEST(Heatmap, RateScaleIsFixedAndOutliersAreFlagged) {
+  const HeatmapGrid grid = make_grid(tiny_sweep());
+  const MetricScale scale = metric_scale(grid, HeatmapMetric::rate);
+  EXPECT_EQ(scale.lo, kRateColorLo);
+  EXPECT_EQ(scale.hi, kRateColorHi);
+  int outliers = 0;
+  for (const SweepCell* c : grid.cells) outliers += rate_outlier(*c);
+  EXPECT_GT(outliers, 0);
+  SweepCell c = *grid.cells.front();
+  c.status = Status::converged;
+  for (double r : {-0.01, 3.01, 266.86}) {
+    c.rate = r;
+    EXPECT_TRUE(rate_outlier(c)) << r;
+  }
+  for (double r : {0.0, 1.0, 2.0, 3.0}) {
+    c.rate = r;
+    EXPECT_FALSE(rate_outlier(c)) << r;
+  }
 }
 
 TEST(Heatmap, IterationScaleSpansTheConvergedCells) {
