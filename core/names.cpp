@@ -26,6 +26,8 @@ constexpr std::pair<Integrator, std::string_view> kIntegratorNames[] = {
     {Integrator::implicit_euler, "implicit-euler"}, {Integrator::dirk_cg2, "dirk-cg2"}};
 constexpr std::pair<LinearSolver, std::string_view> kLinearSolverNames[] = {
     {LinearSolver::auto_select, "auto"}, {LinearSolver::lu, "lu"}, {LinearSolver::gmres, "gmres"}};
+constexpr std::pair<Stopping, std::string_view> kStoppingNames[] = {
+    {Stopping::residual, "residual"}, {Stopping::algebra_residual, "algebra-residual"}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {
@@ -48,11 +50,13 @@ std::string_view to_string(Method v) { return name_of(kMethodNames, v); }
 std::string_view to_string(Differential v) { return name_of(kDifferentialNames, v); }
 std::string_view to_string(Integrator v) { return name_of(kIntegratorNames, v); }
 std::string_view to_string(LinearSolver v) { return name_of(kLinearSolverNames, v); }
+std::string_view to_string(Stopping v) { return name_of(kStoppingNames, v); }
 std::optional<Status> status_from_string(std::string_view s) { return value_of(kStatusNames, s); }
 std::optional<ProblemKind> problem_from_string(std::string_view s) { return value_of(kProblemNames, s); }
 std::optional<Method> method_from_string(std::string_view s) { return value_of(kMethodNames, s); }
 std::optional<Differential> differential_from_string(std::string_view s) { return value_of(kDifferentialNames, s); }
 std::optional<Integrator> integrator_from_string(std::string_view s) { return value_of(kIntegratorNames, s); }
 std::optional<LinearSolver> linear_solver_from_string(std::string_view s) { return value_of(kLinearSolverNames, s); }
+std::optional<Stopping> stopping_from_string(std::string_view s) { return value_of(kStoppingNames, s); }
 
 }  // namespace lienewton

@@ -13,7 +13,8 @@ template <class G>
 SolveResult solve_on(const G& group, const SolveRequest& req, const Eigen::MatrixXd& z, const TraceCallback& cb) {
   const auto field = make_field(group, req.problem, req.rigid_body);
   const auto eq = Equation<G>::implicit_euler(group, typename G::Element(z), req.h, *field);
-  const SolverOptions opt{req.tol, req.max_iterations, req.include_iterates, req.differential, req.linear_solver};
+  const SolverOptions opt{req.tol,           req.max_iterations,  req.include_iterates,
+                          req.differential,  req.linear_solver,   req.stopping};
   return run_method(req.method, eq, opt, cb);
 }
 

@@ -27,6 +27,7 @@ struct SolveRequest {
   bool include_iterates = false;
   RigidBodyParams rigid_body;
   LinearSolver linear_solver = LinearSolver::auto_select;
+  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
 };
 
 // Validates the request (throws RequestError naming the field) and solves it.

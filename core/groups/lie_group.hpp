@@ -8,8 +8,8 @@
 //   log through Spectral (log throws LogDomainError outside its domain) or straight to coordinates
 //   (log_vector: cheaper when no differential follows), dexp (2.10) and dexpinv (3.9) through Spectral,
 //   and what the group owns about its log: kLogRadius (log is defined for angle(...) < kLogRadius),
-//   kLogMargin (how close to the radius log still answers) and defect(y), the distance of y from the group
-//   (||y^T y - I||_F on SO(N)).
+//   kLogMargin (how close to the radius log still answers), defect(y), the distance of y from the group
+//   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor).
 // Adding a group: one header here that satisfies LieGroup, one line in tests/core/lie_group_properties_test.cpp.
 #include <concepts>
 
@@ -39,6 +39,7 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
   { g.dexp_matrix(s) } -> std::convertible_to<typename G::Operator>;
   { g.dexpinv_matrix(s) } -> std::convertible_to<typename G::Operator>;
   { g.defect(y) } -> std::same_as<double>;
+  { g.project(y) } -> std::convertible_to<typename G::Element>;
   { G::kLogRadius } -> std::convertible_to<double>;
   { G::kLogMargin } -> std::convertible_to<double>;
 };

@@ -55,7 +55,7 @@ double dexpinv_coefficient(double t) {
 Vec log(const Mat& r) {
   const double c = 0.5 * (r.trace() - 1.0);
   const Vec s = vee(r);  // sin(t) * axis
-  const double sn = s.norm();
+  const double sn = s.stableNorm();  // norm() would underflow to 0 below angle ~1e-154
   const double t = std::atan2(sn, c);
   if (c > -0.5) {  // t < 2pi/3: sin t >= 0.86, the antisymmetric part determines the axis well
     if (sn == 0.0) return Vec::Zero();

@@ -62,7 +62,7 @@ inline Mat expm1(const Vec& w) {
 // Rotation angle in [0, pi], from atan2 of the antisymmetric and symmetric parts: accurate everywhere.
 inline double angle(const Mat& r) {
   const double c = 0.5 * (r.trace() - 1.0);
-  const double s = vee(r).norm();
+  const double s = vee(r).stableNorm();  // norm() underflows below 1e-154
   return std::atan2(s, c);
 }
 

@@ -6,6 +6,7 @@
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
+#include "polar_factor.hpp"
 #include "so3.hpp"
 
 namespace lienewton {
@@ -34,17 +35,18 @@ struct SO3Group {
   Spectral log(const Element& r) const { return so3::checked_log(r); }  // throws LogDomainError
   Vector log_vector(const Element& r, double& angle) const {
     const Vector v = so3::checked_log(r);
-    angle = v.norm();
+    angle = v.stableNorm();  // norm() underflows to 0 below |v| ~ 1e-154
     return v;
   }
   Vector vector(const Spectral& s) const { return s; }
-  double angle(const Spectral& s) const { return s.norm(); }
+  double angle(const Spectral& s) const { return s.stableNorm(); }
   Vector dexp(const Spectral& s, const Vector& u) const { return so3::dexp(s, u); }
   Vector dexpinv(const Spectral& s, const Vector& u) const { return so3::dexpinv(s, u); }
   Operator dexp_matrix(const Spectral& s) const { return so3::dexp_matrix(s); }
   Operator dexpinv_matrix(const Spectral& s) const { return so3::dexpinv_matrix(s); }
 
   double defect(const Element& y) const { return (y.transpose() * y - Element::Identity()).norm(); }
+  Element project(const Element& y) const { return orthogonal_polar_factor(y); }
 };
 static_assert(LieGroup<SO3Group>);
 

@@ -223,8 +223,16 @@ std::optional<Mat> log_from_symmetric_part(const Mat& r, double& max_angle) {
   const Vec f = c.unaryExpr([](double x) { return angle_over_sine(x); });
   const Mat& v = eig.eigenvectors();
   Mat l = v * f.asDiagonal() * (v.transpose() * a);
-  max_angle = std::acos(std::min(1.0, c(0)));
-  return Mat(0.5 * (l - l.transpose()));
+  l = (0.5 * (l - l.transpose())).eval();
+  // acos of a cosine near 1 has absolute error sqrt(eps) (2.98e-8 at angle 1e-16); below pi/2 the angle is
+  // read from log itself: ||L||_2 = max theta, with L's relative accuracy.
+  if (c(0) > 0.0) {
+    const Eigen::SelfAdjointEigenSolver<Mat> ltl(l.transpose() * l, Eigen::EigenvaluesOnly);
+    max_angle = std::sqrt(std::max(0.0, ltl.eigenvalues().maxCoeff()));
+  } else {
+    max_angle = std::acos(c(0));
+  }
+  return l;
 }
 
 }  // namespace

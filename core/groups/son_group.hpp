@@ -5,6 +5,7 @@
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
+#include "polar_factor.hpp"
 #include "son.hpp"
 
 namespace lienewton {
@@ -53,6 +54,7 @@ struct SONGroup {
   Operator dexpinv_matrix(const Spectral& s) const { return son::dexpinv_matrix(s); }
 
   double defect(const Element& y) const { return (y.transpose() * y - identity()).norm(); }
+  Element project(const Element& y) const { return orthogonal_polar_factor(y); }
 
  private:
   int n_;

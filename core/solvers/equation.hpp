@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "core/groups/lie_group.hpp"
 #include "core/groups/log_domain.hpp"
@@ -34,7 +35,9 @@ class Equation {
     Spectral v_form;       // Version 1: log of z^-1 y; Version 2: the spectral form of v (from exp)
     Vector v;              // coordinates of v
     Vector hg;             // h g(y) (implicit Euler only)
-    Vector f;              // f(y) (Version 1) or f~(v) (Version 2)
+    Vector f;              // f(y) (Version 1) or f~(v) (Version 2): what the iteration drives to 0
+    double residual = 0;   // ||f(y)||, f of (3.6) at y (Version 2: set by read_group_residual)
+    std::optional<double> algebra_residual;  // ||f~(v)|| (Version 2, fixed point)
     double angle = 0;      // largest rotation angle of z^-1 y, in [0, kLogRadius]
     double algebra_angle = 0;  // largest rotation angle of v as an algebra element (may exceed kLogRadius)
     bool in_domain = true; // false: z^-1 y is at the boundary of log's domain, log (hence f) undefined
@@ -69,6 +72,7 @@ class Equation {
     } else {
       p.f = f_(y);
     }
+    p.residual = p.f.norm();
     return p;
   }
 
@@ -88,7 +92,24 @@ class Equation {
     } else {
       p.f = f_(p.y);
     }
+    p.algebra_residual = p.residual = p.f.norm();
     return p;
+  }
+
+  // Version 2: ||f(y)|| = ||log(z^-1 y) - h g(y)|| at y = z exp(v), as section 5 measures every method. It
+  // equals ||f~(v)|| while v's angles stay below pi; beyond, log(z^-1 y) = v - 2 pi k and the two part.
+  // in_domain = false (residual NaN) when z^-1 y is at the edge of log's domain.
+  void read_group_residual(Point& p) const {
+    if (!field_) return;  // a user f: f~(v) = f(z exp v) is f(y) itself
+    double angle = 0;
+    try {
+      const Vector log_v = group_.log_vector(group_.compose(z_inv_, p.y), angle);
+      p.in_domain = inside_log_domain<G>(angle);
+      p.residual = p.in_domain ? (log_v - p.hg).norm() : std::numeric_limits<double>::quiet_NaN();
+    } catch (const LogDomainError&) {
+      p.in_domain = false;
+      p.residual = std::numeric_limits<double>::quiet_NaN();
+    }
   }
 
   // Version 1 differential df_y(u), (3.8) / (3.10) / (3.11); finite-difference: the directional quotient (3.18).
@@ -167,21 +188,51 @@ class Equation {
   // The fixed-point map (1.2): y -> z exp(h g(y)).
   Element fixed_point_map(const Point& p) const { return group_.times_exp(z_, p.hg); }
 
-  // y solves y = z exp(h g(y)) to rounding (checked without log), but h g(y) has a rotation angle beyond
-  // log's radius (pi), so log(z^-1 y) != h g(y): a true solution of (1.1) that f of (3.6) cannot see.
-  bool is_off_branch_solution(const Element& y) const {
-    if (!field_) return false;
-    const Vector w = h_ * field_->g(y);
-    if (!(group_.angle(group_.spectral(w)) > G::kLogRadius)) return false;
-    const Element defect = group_.times_exp(z_, w) - y;
-    constexpr double eps = std::numeric_limits<double>::epsilon();
-    return defect.norm() <= 256.0 * eps * std::sqrt(double(group_.dim())) * (1.0 + w.norm());
+  // kappa ~ h ||dg_y||_2, the conditioning term of the floor and of the (1.1) tolerance: near a solution
+  // df_y = dexpinv - h dg_y, so rounding eps in y is amplified to ~ eps h ||dg_y|| in f. Estimated by power
+  // iteration on dg's matrix (a lower estimate of the 2-norm, within a few percent after 12 steps). 0 for a user f.
+  double conditioning(const Element& y) const {
+    if (!field_ || h_ == 0.0) return 0.0;
+    const Operator m = field_->dg_matrix(group_, y);
+    Vector x = Vector::Ones(group_.dim()) / std::sqrt(double(group_.dim()));
+    double sigma2 = 0.0;
+    for (int k = 0; k < 12; ++k) {
+      const Vector mx = m.transpose() * (m * x);
+      sigma2 = mx.norm();
+      if (!(sigma2 > 0.0) || !std::isfinite(sigma2)) break;
+      x = mx / sigma2;
+    }
+    return h_ * std::sqrt(sigma2);
   }
+
+  // How well y solves (1.1), y = z exp(h g(y)), checked without log: defect = ||y - z exp(w)||_F with
+  // w = h g(y), against tolerance 256 eps sqrt(q) (1 + ||w|| + kappa); angle = the largest rotation angle of w
+  // as an algebra element. angle > pi means log(z^-1 y) != w: a solution of (1.1) that f of (3.6) cannot see.
+  struct ImplicitEulerCheck {
+    double defect = std::numeric_limits<double>::infinity();
+    double tolerance = 0;
+    double angle = 0;
+    bool solves() const { return defect <= tolerance; }
+    bool off_branch() const { return solves() && angle > G::kLogRadius; }
+  };
+  ImplicitEulerCheck check_implicit_euler(const Element& y, double kappa) const {
+    ImplicitEulerCheck c;
+    if (!field_) return c;
+    const Vector w = h_ * field_->g(y);
+    c.angle = group_.angle(group_.spectral(w));
+    c.defect = (group_.times_exp(z_, w) - y).norm();
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    c.tolerance = 256.0 * eps * std::sqrt(double(group_.dim())) * (1.0 + w.norm() + kappa);
+    return c;
+  }
+
+  // The z rule: the given z replaced by its orthogonal polar factor; how far that moved it (Frobenius).
+  double z_adjustment() const { return z_adjustment_; }
 
  private:
   Equation(G group, Element z, double h, const VectorField<G>* field, UserF f, UserDf df)
-      : group_(group), z_(std::move(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field), f_(std::move(f)),
-        df_(std::move(df)) {}
+      : group_(group), z_(group_.project(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field),
+        f_(std::move(f)), df_(std::move(df)), z_adjustment_((z - z_).norm()) {}
 
   // Forward-difference step t = sqrt(eps) scaled to the point and the direction, as the paper suggests
   // for (3.12)/(3.18): |t u| ~ sqrt(eps) max(1, |v|).
@@ -227,6 +278,7 @@ class Equation {
   const VectorField<G>* field_;
   UserF f_;
   UserDf df_;
+  double z_adjustment_;
 };
 
 }  // namespace lienewton

@@ -1,5 +1,7 @@
 #pragma once
 // The fixed-point iteration (1.2), started at y_0 = z: y_{n+1} = z exp(h g(y_n)).
+// In the algebra it is v_{n+1} = h g(z exp v_n) with v_0 = 0, so its algebra residual is
+// f~(v_n) = v_n - h g(y_n) (3.21) with v_n = h g(y_{n-1}): no log needed.
 #include <cmath>
 
 #include "equation.hpp"
@@ -11,15 +13,18 @@ template <LieGroup G>
 SolveResult fixed_point(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   SolverRun<G> run(eq, opt, cb, false);
   typename G::Element y = eq.z();
+  typename G::Vector v = zero_vector(eq.group());
   double step = 0.0;
   for (;;) {
-    const auto p = eq.at(y, Equation<G>::Need::residual);
+    auto p = eq.at(y, Equation<G>::Need::residual);
     if (!p.in_domain) return run.left_log_domain(p);
-    if (auto stop = run.record(p, step)) return run.finish(*stop, y);
+    if (eq.is_implicit_euler()) p.algebra_residual = (v - p.hg).norm();
+    if (auto stop = run.record(p, step)) return run.finish(*stop);
     const typename G::Element next = eq.fixed_point_map(p);  // (1.2)
-    if (!next.allFinite()) return run.finish(Status::non_finite, y);
+    if (!next.allFinite()) return run.finish(Status::non_finite);
     step = (next - y).norm() / std::sqrt(2.0);
     y = next;
+    v = p.hg;
     run.next();
   }
 }

@@ -9,12 +9,6 @@ namespace {
 
 constexpr int kStallIterations = 3;  // residual not halved this many times in a row at the floor: stagnated
 
-std::string format_number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
-
 // The paper's rate r from the last three residuals before convergence (section 5); needs p >= 3.
 std::optional<double> convergence_rate(const std::vector<double>& r, int p) {
   if (p < 3 || static_cast<int>(r.size()) <= p - 1) return std::nullopt;
@@ -25,13 +19,26 @@ std::optional<double> convergence_rate(const std::vector<double>& r, int p) {
   return rate;
 }
 
+// The rate means an order of convergence only when the three residuals it is read from decrease and the
+// ratio of logs lies in [0.5, 3]: a last residual that rose (rate < 0) or fell by luck far below the
+// previous one at the rounding floor (rate >> 2) says nothing about the method.
+bool rate_is_reliable(const std::vector<double>& r, int p, double rate) {
+  return r[p - 3] > r[p - 2] && r[p - 2] > r[p - 1] && rate >= 0.5 && rate <= 3.0;
+}
+
 }  // namespace
 
-IterationMonitor::IterationMonitor(const SolverOptions& options, const TraceCallback& callback, int algebra_dim)
-    : options_(options), callback_(callback), sqrt_q_(std::sqrt(double(algebra_dim))),
-      start_(std::chrono::steady_clock::now()), cpu_start_(thread_cpu_seconds()) {
+std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+IterationMonitor::IterationMonitor(const SolverOptions& options, const TraceCallback& callback)
+    : options_(options), callback_(callback), start_(std::chrono::steady_clock::now()),
+      cpu_start_(thread_cpu_seconds()) {
   trace_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
-  residuals_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
+  stops_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
 }
 
 double IterationMonitor::solver_cpu_seconds() const {
@@ -42,9 +49,12 @@ double IterationMonitor::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-std::optional<Status> IterationMonitor::commit(TraceRecord& rec, double scale) {
-  const double r = rec.residual;
-  residuals_.push_back(r);
+std::optional<Status> IterationMonitor::record(TraceRecord rec, const Measurement& m) {
+  rec.iteration = iteration_;
+  rec.seconds = elapsed();
+  rec.cpu_seconds = solver_cpu_seconds();
+  const double step = rec.step;
+  stops_.push_back(m.stop);
   trace_.push_back(std::move(rec));
   if (callback_) {
     const double before = thread_cpu_seconds();
@@ -52,34 +62,39 @@ std::optional<Status> IterationMonitor::commit(TraceRecord& rec, double scale) {
     callback_cpu_seconds_ += thread_cpu_seconds() - before;
     if (!go_on) return Status::cancelled;
   }
-  if (!std::isfinite(r) || !std::isfinite(trace_.back().step)) return Status::non_finite;
-  if (r <= options_.tol) return Status::converged;
-  if (r > kDivergenceBound || trace_.back().step > kDivergenceBound) return Status::diverged;
-  const double floor = 64.0 * std::numeric_limits<double>::epsilon() * sqrt_q_ * scale;
-  stalled_ = (r > 0.5 * best_ && best_ <= floor) ? stalled_ + 1 : 0;
-  best_ = std::min(best_, r);
+  if (!std::isfinite(m.stop) || !std::isfinite(m.driven) || !std::isfinite(step)) return Status::non_finite;
+  if (m.stop <= options_.tol) return Status::converged;
+  if (m.driven > kDivergenceBound) {
+    divergence_ = std::string(m.driven_name) + " = " + format_number(m.driven);
+    return Status::diverged;
+  }
+  if (step > kDivergenceBound) {
+    divergence_ = "step ||u|| = " + format_number(step);
+    return Status::diverged;
+  }
+  stalled_ = (m.driven > 0.5 * best_ && best_ <= m.floor) ? stalled_ + 1 : 0;
+  best_ = std::min(best_, m.driven);
   if (stalled_ >= kStallIterations) return Status::stagnated;
   if (iteration_ >= options_.max_iterations) return Status::max_iterations;
   return std::nullopt;
 }
 
-SolveResult IterationMonitor::finish(Status status, std::string detail) {
+SolveResult IterationMonitor::finish(Status status) {
   SolveResult res;
   res.status = status;
   res.iterations = iteration_;
-  res.residual = residuals_.empty() ? std::numeric_limits<double>::quiet_NaN() : residuals_.back();
-  if (status == Status::converged) res.rate = convergence_rate(residuals_, iteration_);
-  if (status == Status::stagnated) res.residual = best_;
-  if (!trace_.empty()) res.orthogonality_error = trace_.back().orthogonality_error;
+  if (status == Status::converged) {
+    res.rate = convergence_rate(stops_, iteration_);
+    res.rate_reliable = res.rate && rate_is_reliable(stops_, iteration_, *res.rate);
+  }
   res.seconds = elapsed();
   res.cpu_seconds = solver_cpu_seconds();
   res.trace = std::move(trace_);
-  res.reason = reason_for(status, res);
-  if (!detail.empty()) res.reason += " (" + detail + ")";
   return res;
 }
 
 std::string reason_for(Status status, const SolveResult& r) {
+  const std::string at = " at y_" + std::to_string(r.iterate);
   switch (status) {
     case Status::converged:
       return "converged: ||f(y)|| = " + format_number(r.residual) + " after " + std::to_string(r.iterations) +
@@ -88,19 +103,21 @@ std::string reason_for(Status status, const SolveResult& r) {
       return "no convergence in " + std::to_string(r.iterations) + " iterations: ||f(y)|| = " +
              format_number(r.residual);
     case Status::diverged:
-      return "diverged: residual or step exceeded " + format_number(kDivergenceBound);
+      return "diverged: a residual, step or algebra iterate exceeded " + format_number(kDivergenceBound) +
+             "; returned y_" + std::to_string(r.iterate) + " has ||f(y)|| = " + format_number(r.residual);
     case Status::non_finite: return "a NaN or Inf appeared in the residual, the step or the iterate";
     case Status::left_log_domain:
-      return "z^-1 y reached rotation angle pi, where log (and so f) is undefined";
+      return "z^-1 y reached rotation angle pi, where log (and so f) is undefined; returned the last iterate "
+             "inside, y_" + std::to_string(r.iterate) + ", with ||f(y)|| = " + format_number(r.residual);
     case Status::singular_differential:
       return "the Newton system is singular or too ill-conditioned (reciprocal condition < " +
              format_number(kSingularRcond) + ")";
     case Status::stagnated:
-      return "stagnated at the rounding floor: best ||f(y)|| = " + format_number(r.residual) +
-             ", above tol (for large h an absolute tol cannot be met)";
+      return "stagnated at the rounding floor " + format_number(r.floor) + ": best ||f(y)|| = " +
+             format_number(r.residual) + at + ", above tol (for large h an absolute tol cannot be met)";
     case Status::off_branch:
       return "y solves y = z exp(h g(y)) to rounding, but h g(y) has a rotation angle beyond pi, so "
-             "log(z^-1 y) != h g(y)";
+             "log(z^-1 y) != h g(y) and ||f(y)|| = " + format_number(r.residual);
     case Status::cancelled: return "cancelled by the caller";
   }
   return "unknown";

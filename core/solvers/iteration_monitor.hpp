@@ -1,6 +1,6 @@
 #pragma once
 // The bookkeeping every solver shares: the trace, the callback, the stopping rule of section 5 and the
-// failure classes. A solver reports each iterate y_n with its residual; the monitor says whether to stop.
+// failure classes. A solver reports each iterate y_n with its residuals; the monitor says whether to stop.
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -25,57 +25,52 @@ struct SolverOptions {
   bool include_iterates = false;
   Differential differential = Differential::exact;
   LinearSolver linear_solver = LinearSolver::auto_select;
+  Stopping stopping = Stopping::residual;
+};
+
+// What the monitor is told about iterate n besides its trace record.
+struct Measurement {
+  double stop;          // compared with tol: ||f(y_n)||, or ||f~(v_n)|| under Stopping::algebra_residual
+  double driven;        // the residual the iteration drives to 0 (f~ for Version 2 and the fixed point, else f)
+  const char* driven_name;  // how the reason names it
+  double floor;         // rounding floor of `driven`: below it a non-decreasing residual means stagnation
 };
 
 class IterationMonitor {
  public:
-  IterationMonitor(const SolverOptions& options, const TraceCallback& callback, int algebra_dim);
+  IterationMonitor(const SolverOptions& options, const TraceCallback& callback);
 
-  // Records iterate n and defect(y_n). Returns the status to stop with, or nothing to go on.
-  // scale ~ 1 + ||v|| + h ||g|| sets the rounding floor 64 eps sqrt(q) scale below which a non-decreasing
-  // residual means stagnation.
-  template <class Element>
-  std::optional<Status> record(double residual, double step, double angle, const Element& y, double defect,
-                               double scale) {
-    TraceRecord rec;
-    rec.iteration = iteration_;
-    rec.residual = residual;
-    rec.step = step;
-    rec.angle = angle;
-    rec.orthogonality_error = defect;
-    rec.seconds = elapsed();
-    rec.cpu_seconds = solver_cpu_seconds();
-    if (options_.include_iterates) rec.y = y;
-    return commit(rec, scale);
-  }
+  // Records iterate n. Returns the status to stop with, or nothing to go on.
+  std::optional<Status> record(TraceRecord rec, const Measurement& m);
 
-  // Ends the solve: fills status, reason, iterations, rate, residual; the caller sets y.
-  SolveResult finish(Status status, std::string detail = {});
+  // Ends the solve: fills status, iterations, rate, trace, seconds; the caller fills what describes the
+  // returned iterate (y, residual, reason).
+  SolveResult finish(Status status);
   int iteration() const { return iteration_; }
   void next() { ++iteration_; }
   double elapsed() const;
   // CPU time of this thread since the solve started, less the time spent in the callback (which streams the
   // record to a client): what the solver itself cost, measured as work_precision measures runs.
   double solver_cpu_seconds() const;
-  double last_residual() const { return residuals_.empty() ? 0.0 : residuals_.back(); }
-  double best_residual() const { return best_; }
+  // Why the run diverged: which quantity passed kDivergenceBound, and its value.
+  const std::string& divergence() const { return divergence_; }
+  void diverged_because(std::string what) { divergence_ = std::move(what); }
 
  private:
-  std::optional<Status> commit(TraceRecord& rec, double scale);
-
   SolverOptions options_;
   const TraceCallback& callback_;
-  double sqrt_q_;
   std::chrono::steady_clock::time_point start_;
   double cpu_start_;
   double callback_cpu_seconds_ = 0;
   std::vector<TraceRecord> trace_;
-  std::vector<double> residuals_;
+  std::vector<double> stops_;
   int iteration_ = 0;
   int stalled_ = 0;
   double best_ = std::numeric_limits<double>::infinity();
+  std::string divergence_;
 };
 
 std::string reason_for(Status status, const SolveResult& result);
+std::string format_number(double x);
 
 }  // namespace lienewton

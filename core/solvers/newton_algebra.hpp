@@ -16,19 +16,17 @@ SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, cons
   typename G::Vector u = zero_vector(group);
   double step = 0.0;
   for (;;) {
-    const auto p = eq.at_algebra(v);
-    if (auto stop = run.record(p, step)) {
-      Status s = *stop;
-      // f~(v) = 0 solves y = z exp(v), v = h g(y); log(z^-1 y) = v only while v's angles stay inside log's radius.
-      if (s == Status::converged && eq.is_implicit_euler() && p.algebra_angle > G::kLogRadius) s = Status::off_branch;
-      return run.finish(s, p.y);
-    }
+    auto p = eq.at_algebra(v);
+    // Section 5 measures ||f(y_n)|| with f(y) = log(z^-1 y) - h g(y); it needs log of z^-1 y_n.
+    eq.read_group_residual(p);
+    if (!p.in_domain) return run.left_log_domain(p);
+    if (auto stop = run.record(p, step)) return run.finish(*stop);
     const detail::StepOutcome outcome = detail::newton_step<G>(
         krylov, [&] { return eq.dftilde_matrix(p, opt.differential); },
         [&](const typename G::Vector& w) { return eq.dftilde(p, w, opt.differential); }, p.f, u);
-    if (outcome != detail::StepOutcome::ok) return run.finish(detail::status_of(outcome), p.y);
+    if (outcome != detail::StepOutcome::ok) return run.finish(detail::status_of(outcome));
     step = u.norm();
-    if (v.norm() + step > kDivergenceBound) return run.finish(Status::diverged, p.y);
+    if (v.norm() + step > kDivergenceBound) return run.diverged("||v|| + ||u||", v.norm() + step);
     v += u;  // (3.20): v_{n+1} = v_n + u_n
     run.next();
   }

@@ -14,7 +14,9 @@ namespace lienewton {
 // One record per iterate y_n, n = 0, 1, ... (y_0 = z).
 struct TraceRecord {
   int iteration = 0;
-  double residual = 0;             // ||f(y_n)||: 2-norm of coordinates in the basis E_ij - E_ji = ||f||_F / sqrt(2)
+  double residual = 0;             // ||f(y_n)||: 2-norm of coordinates in the basis E_ij - E_ji = ||f||_F / sqrt(2),
+                                   // f(y) = log(z^-1 y) - h g(y) (3.6) for every method
+  std::optional<double> algebra_residual;  // ||f~(v_n)|| (3.21), Version 2 and the fixed point (v_n = h g(y_{n-1}))
   double step = 0;                 // ||u_{n-1}||, the update that produced y_n (0 for n = 0)
   double angle = 0;                // largest rotation angle of z^-1 y_n
   double orthogonality_error = 0;  // ||y_n^T y_n - I||_F (the group's defect of y_n)
@@ -29,9 +31,15 @@ struct SolveResult {
   std::string reason;
   int iterations = 0;           // the n at which the loop stopped (converged: first n with ||f(y_n)|| <= tol)
   std::optional<double> rate;   // the paper's r from the last three residuals, when iterations >= 3
-  double residual = 0;          // ||f(y_iterations)||
-  double orthogonality_error = 0;
-  Eigen::MatrixXd y;            // the final iterate (never NaN: a non-finite iterate is replaced by the last finite one)
+  bool rate_reliable = false;   // the last three residuals decrease, contract and lie above the floor (see README)
+  int iterate = 0;              // the n of the returned y = y_n (the best iterate when stagnated)
+  double residual = 0;          // ||f(y)|| of the returned y, f of (3.6)
+  std::optional<double> algebra_residual;  // ||f~(v)|| of the returned y (Version 2, fixed point)
+  double floor = 0;             // the rounding floor of the stopping residual at the returned y (README)
+  double orthogonality_error = 0;  // ||y^T y - I||_F of the returned y
+  double z_adjustment = 0;      // ||z - polar(z)||_F: how far the z rule moved the given z
+  int reorthogonalisations = 0; // iterates replaced by their polar factor because ||y^T y - I|| drifted
+  Eigen::MatrixXd y;            // the returned iterate y_iterate (never NaN)
   std::vector<TraceRecord> trace;
   double seconds = 0;           // wall time
   double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded)

@@ -1,9 +1,14 @@
 #pragma once
 // What every solver does around its own update rule, written once: the iteration monitor (trace, callback,
-// stopping rule of section 5), the record of each iterate with the group's defect, and the end of the solve
-// (the final iterate, the linear solver used, and non-converged endings that are true solutions off log's
-// branch reported as off_branch).
+// stopping rule of section 5), the record of each iterate with its residuals and the group's defect, and the
+// end of the solve, classified against the y it returns:
+//   - stagnated returns the best iterate (smallest driven residual), every other ending the last recorded one;
+//   - max_iterations whose driven residual sits at the rounding floor is stagnated;
+//   - any ending whose y solves (1.1) while h g(y) has an angle beyond pi is off_branch.
+// The result's residual, floor and reason describe that returned y.
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -20,48 +25,93 @@ class SolverRun {
   using Element = typename G::Element;
 
   SolverRun(const Equation<G>& eq, const SolverOptions& options, const TraceCallback& callback, bool krylov)
-      : eq_(eq), krylov_(krylov), monitor_(options, callback, eq.group().dim()) {}
+      : eq_(eq), options_(options), krylov_(krylov), monitor_(options, callback) {}
 
-  // Records iterate y_n = p.y with ||f||; the status to stop with, or nothing to go on.
+  // Records iterate y_n = p.y; the status to stop with, or nothing to go on.
   std::optional<Status> record(const Point& p, double step) {
-    return monitor_.record(p.f.norm(), step, p.angle, p.y, eq_.group().defect(p.y), scale_of(p));
+    if (!kappa_) kappa_ = eq_.conditioning(p.y);  // at y_0 = z: the floor's conditioning term
+    const bool algebra = p.algebra_residual.has_value();
+    const double driven = p.algebra_residual.value_or(p.residual);
+    const double stop = options_.stopping == Stopping::algebra_residual && algebra ? driven : p.residual;
+    const double floor = floor_of(p, driven);
+    TraceRecord rec;
+    rec.residual = p.residual;
+    rec.algebra_residual = p.algebra_residual;
+    rec.step = step;
+    rec.angle = p.angle;
+    rec.orthogonality_error = eq_.group().defect(p.y);
+    if (options_.include_iterates) rec.y = p.y;
+    const Iterate it{p.y, monitor_.iteration(), p.residual, p.algebra_residual, driven, floor};
+    if (!(best_.driven <= driven)) best_ = it;
+    last_ = it;
+    return monitor_.record(std::move(rec), {stop, driven, algebra ? "||f~(v)||" : "||f(y)||", floor});
   }
   void next() { monitor_.next(); }
+  // The iterate about to be recorded was replaced by its polar factor (its defect had drifted).
+  void reorthogonalised() { ++reorthogonalisations_; }
+  // Version 2's algebra iterate v grew past kDivergenceBound.
+  SolveResult diverged(const char* what, double value) {
+    monitor_.diverged_because(std::string(what) + " = " + format_number(value));
+    return finish(Status::diverged);
+  }
 
-  SolveResult finish(Status status, const Element& y, std::string detail = {}) {
-    SolveResult res = monitor_.finish(classify_failure(status, y), std::move(detail));
-    res.y = y;
+  // Ends the solve with the iterate the status calls for (see the file comment).
+  SolveResult finish(Status status, std::string detail = {}) {
+    if (status == Status::max_iterations && last_.driven <= last_.floor) status = Status::stagnated;
+    const Iterate& it = status == Status::stagnated ? best_ : last_;
+    if (status != Status::cancelled && eq_.is_implicit_euler() &&
+        eq_.check_implicit_euler(it.y, eq_.conditioning(it.y)).off_branch())
+      status = Status::off_branch;
+    SolveResult res = monitor_.finish(status);
+    res.y = it.y;
+    res.iterate = it.n;
+    res.residual = it.residual;
+    res.algebra_residual = it.algebra_residual;
+    res.floor = it.floor;
+    res.orthogonality_error = eq_.group().defect(it.y);
+    res.z_adjustment = eq_.z_adjustment();
+    res.reorthogonalisations = reorthogonalisations_;
     res.linear_solver = krylov_ ? "gmres" : "lu";
+    res.reason = reason_for(status, res);
+    if (status == Status::diverged && !monitor_.divergence().empty()) detail = monitor_.divergence();
+    if (!detail.empty()) res.reason += " (" + detail + ")";
     return res;
   }
-  // The iterate p.y is at the boundary of log's domain.
+  // The iterate p.y (not recorded) is at the boundary of log's domain: f(p.y) is undefined, so the last
+  // recorded iterate is returned.
   SolveResult left_log_domain(const Point& p) {
-    char buf[96];
+    char buf[112];
     std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", monitor_.iteration(), p.angle,
                   G::kLogRadius - p.angle);
-    return finish(Status::left_log_domain, p.y, buf);
+    return finish(Status::left_log_domain, buf);
   }
 
  private:
-  // ~ 1 + ||f|| + ||v|| + h ||g||: the size of the terms whose rounding bounds how small ||f|| can get.
-  static double scale_of(const Point& p) {
-    double s = 1.0 + p.f.norm();
+  struct Iterate {
+    Element y;
+    int n = 0;
+    double residual = std::numeric_limits<double>::quiet_NaN();
+    std::optional<double> algebra_residual;
+    double driven = std::numeric_limits<double>::infinity();
+    double floor = 0;
+  };
+
+  // 64 eps sqrt(q) (1 + ||f|| + ||v|| + h ||g|| + kappa): the rounding of the terms of f, plus kappa ~ h ||dg||
+  // for the rounding of y amplified by df (3.8).
+  double floor_of(const Point& p, double driven) const {
+    double s = 1.0 + driven + *kappa_;
     if (p.v.size() > 0) s += p.v.norm();
     if (p.hg.size() > 0) s += p.hg.norm();
-    return s;
-  }
-
-  // Non-converged endings of a solve on an implicit Euler equation may be true solutions off log's branch.
-  Status classify_failure(Status status, const Element& y) const {
-    const bool may_be_solution = status == Status::stagnated || status == Status::max_iterations ||
-                                 status == Status::left_log_domain;
-    if (may_be_solution && eq_.is_off_branch_solution(y)) return Status::off_branch;
-    return status;
+    return 64.0 * std::numeric_limits<double>::epsilon() * std::sqrt(double(eq_.group().dim())) * s;
   }
 
   const Equation<G>& eq_;
+  SolverOptions options_;
   bool krylov_;
   IterationMonitor monitor_;
+  std::optional<double> kappa_;
+  Iterate last_, best_;
+  int reorthogonalisations_ = 0;
 };
 
 }  // namespace lienewton

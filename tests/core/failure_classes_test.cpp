@@ -81,8 +81,12 @@ TEST(FailureClasses, LeftLogDomainWhenTheSolutionIsAtPi) {
   const SolveResult r = newton_group(eq, {1e-13, 100, false, Differential::exact});
   expect_reason(r, Status::left_log_domain);
   EXPECT_NE(r.reason.find("iterate 1 has rotation angle 3.14159"), std::string::npos) << r.reason;
-  // The answer is the iterate that reached pi (a rotation, not NaN); the trace ends before it.
-  EXPECT_NEAR(so3::angle(z.transpose() * Eigen::Matrix3d(r.y)), std::numbers::pi, 1e-12);
+  // f is undefined at the iterate that reached pi, so the answer is the last iterate inside log's domain,
+  // y_0 = z, with its residual (issue 11: the result describes the y it returns); the trace ends before pi.
+  EXPECT_EQ(r.iterate, 0);
+  EXPECT_LT((Eigen::Matrix3d(r.y) - z).norm(), 1e-15);
+  EXPECT_EQ(r.residual, r.trace[0].residual);
+  EXPECT_NEAR(r.residual, std::numbers::pi, 1e-12);
   EXPECT_EQ(r.trace.size(), 1u);
 }
 

@@ -43,6 +43,7 @@ struct RnGroup {
   Operator dexpinv_matrix(const Spectral&) const { return Operator::Identity(n_, n_); }
 
   double defect(const Element&) const { return 0.0; }
+  Element project(const Element& y) const { return y; }
 
  private:
   int n_;
