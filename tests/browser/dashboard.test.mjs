@@ -230,6 +230,16 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
     near(await detail('rate'), cell.rate, 5e-4, 0);
     near(await detail('residual'), cell.residual, 0, 5e-4);
   }
+  // Figures 5.1/5.2 as tables: one per method, a row per N, a cell "iterations · rate"; the CSV has every cell.
+  for (const cell of [sweep.cells[0], sweep.cells.at(-1)]) {
+    const table = panel.locator(`#figure-tables table[data-method="${cell.method}"]`);
+    const row = request.n.indexOf(cell.n);
+    const col = request.h.indexOf(cell.h);
+    const shown = await table.locator('tbody tr').nth(row).locator('td').nth(col).innerText();
+    assert.equal(shown, cell.status === 'converged' ? `${cell.iterations} \u00b7 ${cell.rate === null ? '\u2014' : cell.rate.toFixed(3)}` : cell.status.replace(/_/g, ' '));
+  }
+  const csv = await page.evaluate(async () => (await fetch(document.querySelector('#figure-tables a[download]').href)).text());
+  assert.equal(csv.trim().split('\n').length, sweep.cells.length + 1);
   // Rate colouring is clamped to 0..3; cells outside are marked and counted in the legend.
   await panel.getByLabel('Colour converged cells by').selectOption('rate');
   const outliers = sweep.cells.filter((c) => c.status === 'converged' && Number.isFinite(c.rate) && (c.rate < 0 || c.rate > 3));

@@ -27,12 +27,13 @@ export function createStabilityPanel(root, { openSolve }) {
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to sweep the grid (the paper\u2019s Figure 5.1).');
   const maps = el('div', { class: 'maps', id: 'stability-grids' });
   const legend = el('div', { class: 'legend', id: 'stability-legend' });
+  const figures = el('section', { class: 'figure-tables', id: 'figure-tables' });
   const details = el('aside', { class: 'cell-details', id: 'cell-details', 'aria-live': 'polite' },
     el('p', { class: 'hint' }, 'Hover or focus a cell to see its numbers.'));
   const image = el('figure', { class: 'heatmap', hidden: true },
     el('img', { id: 'heatmap-img', alt: 'Server-rendered heatmap of the sweep, one panel per method' }),
     el('figcaption', {}, 'Server-rendered heatmap (PNG): x = log\u2082 h, y = N, one panel per method.'));
-  root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image));
+  root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, figures, image));
 
   const start = runner(form, live);
   let last = null; // { request, cells, grids }
@@ -44,6 +45,7 @@ export function createStabilityPanel(root, { openSolve }) {
     for (const c of last.cells) last.grids.find((g) => g.set(c, metric, scale));
     const r = last.request;
     drawLegend(legend, last.cells, scale, metric, r.methods.length * r.n.length * r.h.length);
+    drawFigureTables(figures, r, last.cells);
   }
 
   async function renderImage(signal) {
@@ -144,4 +146,27 @@ function drawLegend(box, cells, scale, metric, total) {
         `${info.text} (${counts[s] ?? 0})`)),
       el('li', { class: missing ? '' : 'absent', dataset: { legend: 'missing' } },
         el('span', { class: 'swatch pending' }), `not reached: the run was cancelled or stopped first (${missing})`)));
+}
+
+// The paper's Figures 5.1/5.2 as numbers: per method, iterations and rate r for each N (rows) and h = 2^k
+// (columns); a failed cell shows its status. The same cells as CSV for a spreadsheet.
+function drawFigureTables(box, request, cells) {
+  const at = new Map(cells.map((c) => [`${c.method}|${c.n}|${c.h}`, c]));
+  const text = (c) => (!c ? '\u00b7' : c.status === 'converged' ? `${c.iterations} \u00b7 ${fmtRate(c.rate)}` : c.status.replace(/_/g, ' '));
+  const tables = request.methods.map((method) => el('div', { class: 'table-wrap' },
+    el('table', { dataset: { method } },
+      el('caption', {}, `${label(METHODS, method)}: iterations \u00b7 rate r`),
+      el('thead', {}, el('tr', {}, el('th', { scope: 'col' }, 'N \\ k'),
+        request.h.map((h) => el('th', { scope: 'col' }, String(Math.log2(h)))))),
+      el('tbody', {}, request.n.map((n) => el('tr', {}, el('th', { scope: 'row' }, String(n)),
+        request.h.map((h) => el('td', {}, text(at.get(`${method}|${n}|${h}`))))))))));
+  const csv = ['method,n,h,status,iterations,rate,residual'].concat(cells.map((c) =>
+    [c.method, c.n, c.h, c.status, c.iterations, c.rate ?? '', c.residual ?? ''].join(','))).join('\n');
+  const old = box.querySelector('a[download]')?.href;
+  if (old) URL.revokeObjectURL(old);
+  const link = el('a', { href: URL.createObjectURL(new Blob([csv + '\n'], { type: 'text/csv' })),
+    download: 'stability-map.csv' }, 'Download these cells as CSV');
+  box.replaceChildren(el('h3', {}, 'As tables (the paper\u2019s Figures 5.1 and 5.2)'),
+    el('p', { class: 'hint' }, 'Rows N, columns k with h = 2^k; each cell: iterations \u00b7 rate r, or why it failed.'),
+    link, el('div', { class: 'maps' }, tables));
 }
