@@ -222,7 +222,8 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
   for (const cell of [sweep.cells[0], sweep.cells[17], sweep.cells.at(-1)]) {
     await panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`).hover();
     const detail = (key) => text(`#cell-details [data-detail="${key}"]`);
-    assert.equal(await detail('method'), cell.method);
+    const methodLabel = (await (await fetch(base + '/openapi.json')).json())['x-lienewton'].enums.method.find((m) => m.value === cell.method).label;
+    assert.equal(await detail('method'), methodLabel); // the method's name, not its API value
     assert.equal(Number(await detail('n')), cell.n);
     assert.equal(parseFloat(await detail('h')), cell.h);
     assert.equal(await panel.locator('#cell-details .badge').getAttribute('data-status'), cell.status);

@@ -61,7 +61,7 @@ export function createStabilityPanel(root, { openSolve }) {
   function show(cell) {
     const row = (key, term, v) => [el('dt', {}, term), el('dd', { dataset: { detail: key } }, v)];
     details.replaceChildren(el('h3', {}, 'Cell'), el('dl', { class: 'summary' },
-      row('method', 'Method', cell.method), row('n', 'N', String(cell.n)), row('h', 'h', fmtH(cell.h)),
+      row('method', 'Method', label(METHODS, cell.method)), row('n', 'N', String(cell.n)), row('h', 'h', fmtH(cell.h)),
       row('status', 'Status', statusBadge(cell.status)), row('reason', 'Why', cell.reason ?? ''),
       row('iterations', 'Iterations', String(cell.iterations)), row('rate', 'Rate r', fmtRate(cell.rate)),
       row('residual', 'Final \u2016f\u2016', fmtExp(cell.residual))),
