@@ -388,6 +388,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"orthogonality_error", finite_or_null(t.orthogonality_error)},
          {"seconds", finite_or_null(t.seconds)},
          {"cpu_seconds", finite_or_null(t.cpu_seconds)}};
+  if (t.algebra_residual) j["algebra_residual"] = finite_or_null(*t.algebra_residual);
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;
 }
@@ -395,17 +396,24 @@ json to_json(const TraceRecord& t, bool include_iterates) {
 json to_json(const SolveResult& r, bool include_iterates) {
   json trace = json::array();
   for (const auto& t : r.trace) trace.push_back(to_json(t, include_iterates));
-  return json{{"status", std::string(to_string(r.status))},
-              {"reason", r.reason},
-              {"iterations", r.iterations},
-              {"rate", optional_number(r.rate)},
-              {"residual", finite_or_null(r.residual)},
-              {"orthogonality_error", finite_or_null(r.orthogonality_error)},
-              {"y", matrix_to_json(r.y)},
-              {"trace", std::move(trace)},
-              {"seconds", finite_or_null(r.seconds)},
-              {"cpu_seconds", finite_or_null(r.cpu_seconds)},
-              {"linear_solver", r.linear_solver}};
+  json j{{"status", std::string(to_string(r.status))},
+         {"reason", r.reason},
+         {"iterations", r.iterations},
+         {"rate", optional_number(r.rate)},
+         {"rate_reliable", r.rate_reliable},
+         {"iterate", r.iterate},
+         {"residual", finite_or_null(r.residual)},
+         {"floor", finite_or_null(r.floor)},
+         {"orthogonality_error", finite_or_null(r.orthogonality_error)},
+         {"z_adjustment", finite_or_null(r.z_adjustment)},
+         {"reorthogonalisations", r.reorthogonalisations},
+         {"y", matrix_to_json(r.y)},
+         {"trace", std::move(trace)},
+         {"seconds", finite_or_null(r.seconds)},
+         {"cpu_seconds", finite_or_null(r.cpu_seconds)},
+         {"linear_solver", r.linear_solver}};
+  if (r.algebra_residual) j["algebra_residual"] = finite_or_null(*r.algebra_residual);
+  return j;
 }
 
 json to_json(const SweepCell& c) {
