@@ -4,6 +4,7 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -14,15 +15,17 @@ int resolve_thread_count(int requested) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-void parallel_for(int count, int threads, const std::function<bool(int)>& body) {
+void parallel_for(int count, int threads, const std::function<bool(int)>& body, const std::vector<int>& order) {
+  if (!order.empty() && static_cast<int>(order.size()) != count)
+    throw std::invalid_argument("parallel_for: order must list every item once");
   std::atomic<int> next{0};
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   auto worker = [&] {
-    for (int i; !stop.load() && (i = next.fetch_add(1)) < count;) {
+    for (int k; !stop.load() && (k = next.fetch_add(1)) < count;) {
       try {
-        if (!body(i)) stop = true;
+        if (!body(order.empty() ? k : order[static_cast<std::size_t>(k)])) stop = true;
       } catch (...) {
         std::lock_guard lock(failure_mutex);
         if (!failure) failure = std::current_exception();
