@@ -46,7 +46,9 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   using Vector = typename G::Vector;
   const auto field = make_field(group, req.problem, req.rigid_body);
   const DirkTableau& tab = tableau_of(req.integrator);
-  const SolverOptions opt{req.tol, req.max_iterations, false, req.differential};
+  const SolverOptions opt{.tol = req.tol, .max_iterations = req.max_iterations, .include_iterates = false,
+                          .differential = req.differential, .linear_solver = LinearSolver::auto_select,
+                          .stopping = req.stopping};
   const int steps = static_cast<int>(std::llround(req.t_end / req.h));
   const double h = req.t_end / steps;
   const RigidBody* body = req.problem == ProblemKind::rigid_body

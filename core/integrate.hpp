@@ -17,6 +17,7 @@ struct IntegrateRequest {
   Differential differential = Differential::exact;
   double tol = 1e-13;
   int max_iterations = 100;
+  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
   std::uint64_t seed = 1;
   std::optional<Eigen::MatrixXd> z;  // y(0); default start_point(n, seed)
   RigidBodyParams rigid_body;

@@ -93,6 +93,7 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     s.differential = req.differential;
     s.tol = req.tol;
     s.max_iterations = req.max_iterations;
+    s.stopping = req.stopping;
     s.z = start_points[ni];
     s.rigid_body = req.rigid_body;
     const SolveResult r = solve(s, poll);

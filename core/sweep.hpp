@@ -17,6 +17,7 @@ struct SweepRequest {
   std::uint64_t seed = 1;
   double tol = 1e-13;
   int max_iterations = 100;
+  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
   int threads = 0;        // 0: all cores
   RigidBodyParams rigid_body;
 };

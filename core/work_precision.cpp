@@ -34,6 +34,7 @@ IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisio
   r.differential = c.differential;
   r.tol = req.tol;
   r.max_iterations = req.max_iterations;
+  r.stopping = req.stopping;
   r.seed = req.seed;
   r.rigid_body = req.rigid_body;
   r.reference = false;

@@ -22,6 +22,7 @@ struct WorkPrecisionRequest {
   std::vector<double> h;  // default: 2^-2 .. 2^-7
   double tol = 1e-13;
   int max_iterations = 100;
+  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
   std::uint64_t seed = 1;
   RigidBodyParams rigid_body;
 };

@@ -215,7 +215,7 @@ json parse_body(std::string_view text) {
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
-                      "include_iterates", "rigid_body", "linear_solver"});
+                      "include_iterates", "rigid_body", "linear_solver", "stopping"});
   SolveRequest r;
   if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
   r.n = read_n(f, limits, r.n);
@@ -224,6 +224,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
   if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
   if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
   if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
   if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
   if (auto x = f["include_iterates"]) r.include_iterates = read_bool(*x, "include_iterates");
@@ -234,7 +235,8 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 }
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body"});
+  Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
+                      "stopping"});
   SweepRequest r;
   const std::size_t max_axis = std::min<std::size_t>(limits.max_grid_cells, 100000);
   if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
@@ -253,6 +255,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
   if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
   if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
   if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
   // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
@@ -270,7 +273,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
-                      "seed", "z", "frames", "rigid_body"});
+                      "seed", "z", "frames", "rigid_body", "stopping"});
   IntegrateRequest r;
   if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
   r.n = read_n(f, limits, r.n);
@@ -281,6 +284,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
   if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
   if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
   if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
   if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
   if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
   if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
@@ -292,7 +296,8 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 }
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body"});
+  Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
+                      "stopping"});
   WorkPrecisionRequest r;
   if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
   if (auto x = f["n"]) r.n = read_int(*x, "n", 2, limits.max_n);
@@ -314,6 +319,7 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
   }
   if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
   if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
   if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
   if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
   // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.

@@ -44,6 +44,11 @@ json schemas() {
   const json method = enum_schema(kAllMethods, "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2");
   const json differential = enum_schema(kAllDifferentials, "how the Newton differential is formed");
   const json integrator = enum_schema(kAllIntegrators, "implicit Lie group integrator");
+  json stopping = enum_schema(kAllStoppings,
+                              "stopping rule of Version 2 and the fixed point: residual stops on ||f(y_n)|| = "
+                              "||log(z^-1 y_n) - h g(y_n)|| <= tol as in the paper's section 5; algebra-residual on "
+                              "||f~(v_n)|| (3.21), the test Version 2 would normally use. Version 1 always uses ||f(y_n)||");
+  stopping["default"] = "residual";
   const json status = enum_schema(kAllStatuses, "how the solve ended");
   const json h = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 1e6}, {"description", "step size"}};
   const json n = json{{"type", "integer"}, {"minimum", 2}, {"description", "matrix size N (capped by --max-n)"}};
@@ -63,7 +68,8 @@ json schemas() {
                               {"rigid_body", ref("RigidBody")},
                               {"linear_solver", json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}},
                                                      {"default", "auto"},
-                                                     {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}}}});
+                                                     {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}}},
+                              {"stopping", stopping}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -94,7 +100,8 @@ json schemas() {
                              "cpu_seconds", "linear_solver"}, false);
   s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
-                              {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")}});
+                              {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
+                              {"stopping", stopping}});
   s["SweepCell"] = object({{"method", method}, {"n", integer("N")}, {"h", number("step size")}, {"status", status},
                            {"reason", json{{"type", "string"}}}, {"iterations", integer("")},
                            {"rate", nullable_number("")}, {"residual", nullable_number("")}},
@@ -104,7 +111,7 @@ json schemas() {
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
-                                  {"rigid_body", ref("RigidBody")}});
+                                  {"rigid_body", ref("RigidBody")}, {"stopping", stopping}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -120,7 +127,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"rigid_body", ref("RigidBody")}});
+                                      {"rigid_body", ref("RigidBody")}, {"stopping", stopping}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

@@ -72,6 +72,32 @@ TEST_F(Routes, SolveAnswersTheDocumentedFormat) {
   EXPECT_EQ(form->status, 200);
 }
 
+// "stopping" reaches the solver (issue 11): the issue's case paper-linear, N = 5, h = 16, Version 2 with
+// dexpinv-1, where v_n leaves log's principal branch, so ||f~(v_n)|| falls below tol = 0.5 while ||f(y_n)||
+// stays near 2 pi. Section 5's rule runs to the cap; the algebra-residual rule stops on ||f~||.
+TEST_F(Routes, StoppingSelectsVersion2sRule) {
+  auto c = client();
+  auto solve = [&](const char* stopping) {
+    const std::string body = R"({"problem":"paper-linear","n":5,"h":16,"method":"newton-algebra",)"
+                             R"("differential":"dexpinv-1","tol":0.5,"stopping":")" + std::string(stopping) + "\"}";
+    auto res = c.Post("/api/v1/solve", body, "application/json");
+    EXPECT_TRUE(res && res->status == 200) << (res ? res->body : "no answer");
+    return res ? json::parse(res->body) : json();
+  };
+  const json by_f = solve("residual"), by_algebra = solve("algebra-residual");
+  EXPECT_EQ(by_f["status"], "max_iterations");
+  EXPECT_EQ(by_f["iterations"], 100);
+  for (const json& rec : by_f["trace"]) EXPECT_GT(rec["residual"].get<double>(), 0.5);
+  EXPECT_EQ(by_algebra["status"], "converged");
+  EXPECT_LT(by_algebra["iterations"].get<int>(), 100);
+  EXPECT_LE(by_algebra["algebra_residual"].get<double>(), 0.5);
+  EXPECT_GT(by_algebra["residual"].get<double>(), 0.5);  // the returned y does not solve f(y) = 0 to tol
+  auto bad = c.Post("/api/v1/solve", R"({"stopping":"f-tilde"})", "application/json");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_EQ(json::parse(bad->body)["error"]["field"], "stopping");
+}
+
 TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
   auto c = client();
   auto sweep = c.Post("/api/v1/sweep",

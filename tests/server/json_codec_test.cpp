@@ -169,6 +169,28 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(wp_failure(R"({"choices":[]})").field, "choices");
 }
 
+// Every request that runs solves takes the stopping rule (issue 11); a bad value is a 400/422 naming the field.
+TEST(JsonCodec, StoppingRuleOnEveryRequest) {
+  const json algebra = parse_body(R"({"stopping":"algebra-residual"})");
+  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).stopping, Stopping::residual);
+  EXPECT_EQ(solve_request_from_json(parse_body(R"({"stopping":"residual"})"), Limits{}).stopping, Stopping::residual);
+  EXPECT_EQ(solve_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
+  EXPECT_EQ(sweep_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
+  EXPECT_EQ(integrate_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
+  EXPECT_EQ(work_precision_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
+  EXPECT_EQ(work_precision_request_from_json(parse_body("{}"), Limits{}).stopping, Stopping::residual);
+  for (const char* bad : {R"({"stopping":"algebra"})", R"({"stopping":1})", R"({"stopping":"Residual"})"}) {
+    const json body = parse_body(bad);
+    for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
+                             failure_of([&] { sweep_request_from_json(body, Limits{}); }),
+                             failure_of([&] { integrate_request_from_json(body, Limits{}); }),
+                             failure_of([&] { work_precision_request_from_json(body, Limits{}); })}) {
+      EXPECT_EQ(f.field, "stopping") << bad;
+      EXPECT_EQ(f.code, "invalid_field") << bad;
+    }
+  }
+}
+
 TEST(JsonCodec, SweepResultRoundTrips) {
   SweepResult s;
   SweepCell c;
