@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "cancellation.hpp"
+
 namespace lienewton {
 
 int resolve_thread_count(int requested) {
@@ -22,7 +24,9 @@ void parallel_for(int count, int threads, const std::function<bool(int)>& body, 
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  const CancellationToken* token = current_cancellation();
   auto worker = [&] {
+    const CancellationScope scope(token);  // the caller's token, in every worker
     for (int k; !stop.load() && (k = next.fetch_add(1)) < count;) {
       try {
         if (!body(order.empty() ? k : order[static_cast<std::size_t>(k)])) stop = true;

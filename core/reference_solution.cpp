@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cancellation.hpp"
 #include "groups/with_group.hpp"
 #include "problems.hpp"
 
@@ -30,7 +31,10 @@ Eigen::MatrixXd integrate_reference(const G& group, ProblemKind problem, const R
   const int steps = std::max(64, static_cast<int>(std::ceil(t_end * kReferenceStepsPerUnit)));
   const double h = t_end / steps;
   typename G::Element y = y0;
-  for (int k = 0; k < steps; ++k) y = rkmk4_step(group, *field, y, h);
+  for (int k = 0; k < steps; ++k) {
+    throw_if_cancelled();
+    y = rkmk4_step(group, *field, y, h);
+  }
   return y;
 }
 

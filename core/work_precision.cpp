@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "cpu_clock.hpp"
+#include "cancellation.hpp"
 #include "order_fit.hpp"
 #include "parallel_for.hpp"
 #include "reference_solution.hpp"
@@ -49,6 +50,7 @@ constexpr int kMaxRepeats = 20;
 double min_cpu_seconds(const IntegrateRequest& ir, double first) {
   double best = first, spent = first;
   for (int r = 1; r < kMaxRepeats && spent < kTimingBudget; ++r) {
+    throw_if_cancelled();
     const double t = integrate(ir).cpu_seconds;
     best = std::min(best, t);
     spent += t;

@@ -8,6 +8,7 @@
 #include "core/sweep.hpp"
 #include "core/work_precision.hpp"
 #include "server/http_errors.hpp"
+#include "server/output_limits.hpp"
 #include "server/query_params.hpp"
 #include "server/render_requests.hpp"
 #include "server/routes.hpp"
@@ -80,25 +81,36 @@ std::shared_ptr<ApiHandlers::Slot> ApiHandlers::acquire_slot() {
   return std::make_shared<Slot>(slots_in_use_, metrics_);
 }
 
-StopCheck ApiHandlers::make_stop(double budget_seconds) const {
-  const auto timeout = std::chrono::duration_cast<StopCheck::Clock::duration>(
+std::shared_ptr<CancellationToken> ApiHandlers::make_token(const HttpRequest& req, double budget_seconds) const {
+  const auto timeout = std::chrono::duration_cast<CancellationToken::Clock::duration>(
       std::chrono::duration<double>(budget_seconds));
-  return StopCheck(StopCheck::Clock::now() + timeout, abort_work_, budget_seconds);
+  return std::make_shared<CancellationToken>(CancellationToken::Clock::now() + timeout, &abort_work_, req.client_gone,
+                                             budget_seconds);
+}
+
+// Runs a job with its token as the thread's current one, so that every core loop polls it.
+json ApiHandlers::run(const Job& job, const Emit& emit, const CancellationToken& token) const {
+  const CancellationScope scope(&token);
+  try {
+    return job(emit, token);
+  } catch (const Cancelled&) {
+    throw_stopped(token);
+  }
 }
 
 void ApiHandlers::progress(int index) const {
   if (options_.on_progress) options_.on_progress(index);
 }
 
-void ApiHandlers::throw_stopped(const StopCheck& stop, const std::string& done) const {
-  switch (stop.reason()) {
-    case StopReason::shutdown:
+void ApiHandlers::throw_stopped(const CancellationToken& token, const std::string& done) const {
+  switch (token.reason()) {
+    case CancelReason::shutdown:
       throw ApiError(503, "shutting_down", "", "the server is shutting down; the work was cancelled");
-    case StopReason::client_gone:
+    case CancelReason::client_gone:
       throw ApiError(499, "client_gone", "", "the client closed the connection");
     default:
       throw ApiError(504, "deadline_exceeded", "",
-                     "the request took longer than the server's limit of " + format_seconds(stop.budget_seconds()) +
+                     "the request took longer than the server's limit of " + format_seconds(token.budget_seconds()) +
                          " and was cancelled" + done);
   }
 }
@@ -106,14 +118,15 @@ void ApiHandlers::throw_stopped(const StopCheck& stop, const std::string& done) 
 ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
   SolveRequest request = solve_request_from_json(body, options_.limits);
   validate(request);
-  return [this, request](const Emit& emit, StopCheck& stop) {
+  check_output(request, options_.output);
+  return [this, request](const Emit& emit, const CancellationToken& token) {
     SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
       progress(t.iteration);
       if (emit && !emit("iteration", to_json(t, request.include_iterates))) return false;
-      return !stop.should_stop();
+      return !token.cancelled();
     });
     metrics_.solve_finished(std::string(to_string(result.status)), result.iterations);
-    if (result.status == Status::cancelled) throw_stopped(stop);
+    if (result.status == Status::cancelled) throw_stopped(token);
     return to_json(result, request.include_iterates);
   };
 }
@@ -121,22 +134,30 @@ ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
 ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
   SweepRequest request = sweep_request_from_json(body, options_.limits);
   validate(request);
-  return [this, request](const Emit& emit, StopCheck& stop) {
-    int index = 0;
+  check_output(request, options_.output);
+  return [this, request](const Emit& emit, const CancellationToken& token) {
+    int index = 0;  // cells finished (each one reaches this callback once)
     bool stopped = false;
-    SweepResult result = lienewton::sweep(request, [&](const SweepCell& cell) {
-      progress(index++);
-      metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
-      if (emit && !emit("cell", to_json(cell))) return !(stopped = true);
-      return !(stopped = stop.should_stop());
-    });
-    if (stopped) {
-      // Say how far it got: the cells finished (and streamed) and those never computed.
+    // Say how far it got: the cells finished (and streamed) and those never computed.
+    const auto throw_with_count = [&] {
       const SweepRequest full = with_defaults(request);
       const std::size_t total = full.methods.size() * full.n.size() * full.h.size();
-      throw_stopped(stop, ": " + std::to_string(result.cells.size()) + " of " + std::to_string(total) +
-                              " cells finished, " + std::to_string(total - result.cells.size()) + " not computed");
+      const std::size_t finished = static_cast<std::size_t>(index);
+      throw_stopped(token, ": " + std::to_string(finished) + " of " + std::to_string(total) + " cells finished, " +
+                               std::to_string(total - finished) + " not computed");
+    };
+    SweepResult result;
+    try {
+      result = lienewton::sweep(request, [&](const SweepCell& cell) {
+        progress(index++);
+        metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
+        if (emit && !emit("cell", to_json(cell))) return !(stopped = true);
+        return !(stopped = token.cancelled());
+      });
+    } catch (const Cancelled&) {  // inside a cell's finite-difference columns
+      throw_with_count();
     }
+    if (stopped || token.reason() != CancelReason::none) throw_with_count();
     return to_json(result);
   };
 }
@@ -144,15 +165,16 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
 ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
   IntegrateRequest request = integrate_request_from_json(body, options_.limits);
   validate(request);
-  return [this, request](const Emit& emit, StopCheck& stop) {
+  check_output(request, options_.output);
+  return [this, request](const Emit& emit, const CancellationToken& token) {
     bool stopped = false;
     IntegrateResult result = lienewton::integrate(request, [&](const StepRecord& step) {
       progress(step.step);
       if (emit && !emit("step", to_json(step))) return !(stopped = true);
-      return !(stopped = stop.should_stop());
+      return !(stopped = token.cancelled());
     });
     if (stopped || result.status == Status::cancelled) {
-      if (stop.reason() != StopReason::none) throw_stopped(stop);
+      if (token.reason() != CancelReason::none) throw_stopped(token);
     }
     return to_json(result);
   };
@@ -161,15 +183,15 @@ ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
 ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   WorkPrecisionRequest request = work_precision_request_from_json(body, options_.limits);
   validate(request);
-  return [this, request](const Emit& emit, StopCheck& stop) {
+  return [this, request](const Emit& emit, const CancellationToken& token) {
     int index = 0;
     bool stopped = false;
     WorkPrecisionResult result = lienewton::work_precision(request, [&](const WorkPrecisionSeries& series) {
       progress(index++);
       if (emit && !emit("series", to_json(series))) return !(stopped = true);
-      return !(stopped = stop.should_stop());
+      return !(stopped = token.cancelled());
     });
-    if (stopped) throw_stopped(stop);
+    if (stopped || token.reason() != CancelReason::none) throw_stopped(token);
     return to_json(result);
   };
 }
@@ -185,17 +207,26 @@ HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
 HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
   return serve(req, work_precision_job(request_json(req)), false, options_.request_timeout);
 }
-HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(request_json(req), service::render_frames, options_.request_timeout); }
+HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
+// Without n and h it would be the paper's full 882-cell finite-difference sweep: an <img> must ask for it.
 HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
-  return render(request_json(req, {"methods", "n", "h"}), service::render_heatmap, options_.sweep_timeout);
+  if (req.method != "POST") {
+    for (const char* field : {"n", "h"}) {
+      if (!req.params.count(field)) {
+        throw ApiError(400, "missing_field", field, std::string("GET /api/v1/render/heatmap needs the ") + field +
+                                                        " parameter (a list of values)");
+      }
+    }
+  }
+  return render(req, request_json(req, {"methods", "n", "h"}), service::render_heatmap, options_.sweep_timeout);
 }
 // The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
 HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
-  return render(request_json(req, {"choices", "h"}), service::render_work_precision, options_.request_timeout);
+  return render(req, request_json(req, {"choices", "h"}), service::render_work_precision, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
-  return render(request_json(req, {"methods", "differentials"}), service::render_residuals, options_.request_timeout);
+  return render(req, request_json(req, {"methods", "differentials"}), service::render_residuals, options_.request_timeout);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
 // Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).
@@ -216,30 +247,29 @@ HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_sta
 HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse, double budget_seconds) {
   auto slot = acquire_slot();
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
-  if (sse || ndjson) return stream(std::move(slot), std::move(job), sse, budget_seconds);
-  StopCheck stop = make_stop(budget_seconds);
-  return json_response(dump(job(Emit{}, stop)));
+  const auto token = make_token(req, budget_seconds);
+  if (sse || ndjson) return stream(std::move(slot), std::move(job), sse, token);
+  return json_response(dump(run(job, Emit{}, *token)));
 }
 
 // Streams run inside the body stream, on the connection's own worker: each record is written as it is
 // produced, and a failed write (client gone) cancels the work at the next callback. The stream owns the work
 // slot, so the slot is held until the transport drops the response.
-HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, double budget_seconds) {
+HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, std::shared_ptr<CancellationToken> token) {
   slot->mark_streaming();
   HttpResponse res;
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Accel-Buffering", "no");
-  auto stop = std::make_shared<StopCheck>(make_stop(budget_seconds));
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
   res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
-  res.stream = [slot, job = std::move(job), stop, sse, metrics = &metrics_](const ChunkSink& sink) {
+  res.stream = [this, slot, job = std::move(job), token, sse, metrics = &metrics_](const ChunkSink& sink) {
     auto write = [&](const char* kind, json record) {
       // "type" first, for people reading the stream; the rest keeps the result's field order.
       std::string line = dump(record);
       line = std::string("{\"type\":\"") + kind + "\"" + (line.size() > 2 ? "," : "") + line.substr(1);
       const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + line + "\n\n" : line + "\n";
       if (!sink(text)) {
-        stop->client_gone();
+        token->cancel(CancelReason::client_gone);
         return false;
       }
       return true;
@@ -247,7 +277,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
     json terminal;
     const char* kind = "result";
     try {
-      terminal = job(write, *stop);
+      terminal = run(job, write, *token);
     } catch (const ApiError& e) {
       kind = "error";
       terminal = error_body(e.code(), e.field(), e.what());
@@ -261,19 +291,23 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
     }
     // The status line (200) went out with the first record: the metrics count how the stream ended.
     metrics->stream_ended(kind == std::string("result") ? "result" : terminal["error"].value("code", "error"));
-    return stop->reason() != StopReason::client_gone && write(kind, std::move(terminal));
+    return token->reason() != CancelReason::client_gone && write(kind, std::move(terminal));
   };
   return res;
 }
 
-HttpResponse ApiHandlers::render(const json& body, RenderRequestFn draw, double budget_seconds) {
-  StopCheck stop = make_stop(budget_seconds);
+HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, RenderRequestFn draw,
+                                 double budget_seconds) {
+  check_image_pixels(body, options_.output);
+  const auto token_ptr = make_token(req, budget_seconds);
+  const CancellationToken& token = *token_ptr;
+  const CancellationScope scope(&token);
   std::shared_ptr<Slot> slot;
   RenderHooks hooks;
   hooks.before_work = [&] { slot = acquire_slot(); };
   hooks.keep_going = [&](int index) {
     progress(index);
-    return !stop.should_stop();
+    return !token.cancelled();
   };
   hooks.on_cell = [&](const SweepCell& c) { metrics_.solve_finished(std::string(to_string(c.status)), c.iterations); };
   hooks.on_solve = [&](const SolveResult& r) { metrics_.solve_finished(std::string(to_string(r.status)), r.iterations); };
@@ -281,7 +315,9 @@ HttpResponse ApiHandlers::render(const json& body, RenderRequestFn draw, double 
   try {
     png = draw(body, options_.limits, *renderer_, hooks);
   } catch (const RenderCancelled&) {
-    throw_stopped(stop);
+    throw_stopped(token);
+  } catch (const Cancelled&) {
+    throw_stopped(token);
   } catch (const render::RenderUnavailable&) {
     throw ApiError(503, "render_unavailable", "", "the offscreen renderer is unavailable; everything else still works");
   }

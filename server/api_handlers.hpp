@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "server/cancellation.hpp"
+#include "core/cancellation.hpp"
 #include "server/http_exchange.hpp"
 #include "server/json_codec.hpp"
 #include "server/metrics.hpp"
@@ -44,23 +44,25 @@ class ApiHandlers {
   // Writes one progress record; false when the client has gone.
   using Emit = std::function<bool(const char* type, json record)>;
   // Runs the work; returns the terminal result (without "type"). Throws ApiError/RequestError.
-  using Job = std::function<json(const Emit& emit, StopCheck& stop)>;
+  using Job = std::function<json(const Emit& emit, const CancellationToken& token)>;
 
  private:
   class Slot;
   std::shared_ptr<Slot> acquire_slot();
-  StopCheck make_stop(double budget_seconds) const;
+  // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps and heatmaps).
+  std::shared_ptr<CancellationToken> make_token(const HttpRequest& req, double budget_seconds) const;
+  json run(const Job& job, const Emit& emit, const CancellationToken& token) const;
   void progress(int index) const;
-  [[noreturn]] void throw_stopped(const StopCheck& stop, const std::string& done = {}) const;
+  // done: what the work got through before it stopped, appended to the deadline message.
+  [[noreturn]] void throw_stopped(const CancellationToken& token, const std::string& done = {}) const;
 
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
-  // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps).
   HttpResponse serve(const HttpRequest& req, Job job, bool sse, double budget_seconds);
-  HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, double budget_seconds);
-  HttpResponse render(const json& body, RenderRequestFn draw, double budget_seconds);
+  HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, std::shared_ptr<CancellationToken> token);
+  HttpResponse render(const HttpRequest& req, const json& body, RenderRequestFn draw, double budget_seconds);
 
   const ServerOptions& options_;
   Metrics& metrics_;

@@ -287,6 +287,11 @@ void HttpServer::install() {
     if (auto rejection = check_body_rules(to_exchange(req), kind, options_.max_body)) {
       return refuse(rejection->status, rejection->code, rejection->message);
     }
+    if (route && route->long_work) {
+      if (auto rejection = check_same_origin(to_exchange(req))) {
+        return refuse(rejection->status, rejection->code, rejection->message);
+      }
+    }
     if (kind == BodyKind::json && req.get_header_value("Content-Type").find("application/x-www-form-urlencoded") == 0) {
       // What curl -d sends. The body is read as JSON all the same; relabelled here (before cpp-httplib reads
       // the body) because cpp-httplib refuses form bodies above 8192 bytes and parses them into parameters.

@@ -61,6 +61,21 @@ std::optional<Rejection> check_body_rules(const HttpRequest& req, BodyKind kind,
   return std::nullopt;
 }
 
+std::optional<Rejection> check_same_origin(const HttpRequest& req) {
+  if (lower(req.header("Sec-Fetch-Site")) == "cross-site") {
+    return Rejection{403, "cross_site", "requests from another site may not start work here"};
+  }
+  if (req.has_header("Origin")) {
+    const std::string origin = lower(req.header("Origin"));
+    const std::size_t scheme = origin.find("://");
+    const std::string authority = scheme == std::string::npos ? "" : origin.substr(scheme + 3);
+    if (authority.empty() || authority != lower(req.header("Host"))) {
+      return Rejection{403, "cross_site", "the Origin header does not match the Host this request was sent to"};
+    }
+  }
+  return std::nullopt;
+}
+
 bool valid_request_id(std::string_view id) {
   if (id.empty() || id.size() > 64) return false;
   for (char c : id) {

@@ -22,6 +22,10 @@ enum class BodyKind { none, json };
 
 std::optional<Rejection> check_body_rules(const HttpRequest& request, BodyKind kind, std::size_t max_body);
 
+// Long work must not be started by another site's page (an <img src>, a form posted cross-site): refuses
+// Sec-Fetch-Site: cross-site, and an Origin whose host[:port] is not the request's Host (or "null"), with 403.
+std::optional<Rejection> check_same_origin(const HttpRequest& request);
+
 // Accepts ^[A-Za-z0-9._-]{1,64}$ only, so the id can be echoed and logged verbatim.
 bool valid_request_id(std::string_view id);
 std::string generate_request_id();

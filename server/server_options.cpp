@@ -33,6 +33,8 @@ constexpr Flag kFlags[] = {
     {"--max-headers", "LIENEWTON_MAX_HEADERS", "most header fields per request; more get 431 (default 100)"},
     {"--max-connections", "LIENEWTON_MAX_CONNECTIONS", "open connections; more are answered 503 and closed (default 512, at most 900)"},
     {"--max-connections-per-client", "LIENEWTON_MAX_CONNECTIONS_PER_CLIENT", "open connections per client address; more get 503 (default 64)"},
+    {"--max-output-values", "LIENEWTON_MAX_OUTPUT_VALUES", "most numbers one result may hold (iterates x N^2, frames, steps, cells); more get 413 (default 1000000)"},
+    {"--max-image-pixels", "LIENEWTON_MAX_IMAGE_PIXELS", "largest width x height of a PNG render; larger gets 413 (default 4194304)"},
     {"--shutdown-grace", "LIENEWTON_SHUTDOWN_GRACE", "seconds open streams may finish after SIGTERM before they are ended with an error record (default 3)"},
 };
 
@@ -96,6 +98,12 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
     if (!parse_int(value, 4, 900, o.max_connections)) return bad("an integer in [4, 900]");
   } else if (name == "--max-connections-per-client") {
     if (!parse_int(value, 1, 900, o.max_connections_per_client)) return bad("an integer in [1, 900]");
+  } else if (name == "--max-output-values") {
+    if (!parse_int(value, 1000, 1 << 30, i)) return bad("an integer in [1000, 2^30]");
+    o.output.max_values = static_cast<std::size_t>(i);
+  } else if (name == "--max-image-pixels") {
+    if (!parse_int(value, 4096, 1 << 26, i)) return bad("an integer in [4096, 2^26]");
+    o.output.max_image_pixels = static_cast<std::size_t>(i);
   } else if (name == "--shutdown-grace") {
     if (!parse_double(value, 0, 8, d)) return bad("a number of seconds in [0, 8]");
     o.shutdown_grace = d;

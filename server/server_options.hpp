@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/json_codec.hpp"
+#include "server/output_limits.hpp"
 
 namespace lienewton::service {
 
@@ -16,6 +17,7 @@ struct ServerOptions {
   int port = 8080;                 // 0: any free port (tests)
   int threads = 8;                 // workers serving complete requests (idle and slow connections hold none)
   Limits limits;                   // max_n, max_iterations, grid caps
+  OutputLimits output;             // numbers per result, pixels per image
   double request_timeout = 30;     // seconds per request, streams included
   // seconds a sweep (JSON, stream or heatmap render) may run: a stability map of hundreds of solves gets a budget
   // of its own, long enough for the default map (882 cells) on a busy 2-core machine

@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/cancellation.hpp"
 #include "core/groups/lie_group.hpp"
 #include "core/groups/log_domain.hpp"
 #include "core/options.hpp"
@@ -151,6 +152,7 @@ class Equation {
       Operator m = zero_operator(group_);
       const double t = difference_step(p, basis_vector(group_, 0));
       for (int i = 0; i < group_.dim(); ++i) {
+        throw_if_cancelled();  // q columns of exp and log: seconds for large N
         const Point q = at(group_.times_exp(p.y, t * basis_vector(group_, i)), Need::residual);
         if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
         m.col(i) = (q.f - p.f) / t;
@@ -171,8 +173,10 @@ class Equation {
     if (d == Differential::finite_difference) {
       Operator m = zero_operator(group_);
       const double t = difference_step(p, basis_vector(group_, 0));
-      for (int i = 0; i < group_.dim(); ++i)
+      for (int i = 0; i < group_.dim(); ++i) {
+        throw_if_cancelled();
         m.col(i) = (at_algebra(p.v + t * basis_vector(group_, i), Need::residual).f - p.f) / t;
+      }
       return m;
     }
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, group_.dexp(p.v_form, u)); });

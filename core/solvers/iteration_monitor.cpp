@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "core/cancellation.hpp"
 #include "core/cpu_clock.hpp"
 
 namespace lienewton {
@@ -62,6 +63,7 @@ std::optional<Status> IterationMonitor::record(TraceRecord rec, const Measuremen
     callback_cpu_seconds_ += thread_cpu_seconds() - before;
     if (!go_on) return Status::cancelled;
   }
+  if (cancellation_requested()) return Status::cancelled;  // deadline, shutdown, client gone
   if (!std::isfinite(m.stop) || !std::isfinite(m.driven) || !std::isfinite(step)) return Status::non_finite;
   if (m.stop <= options_.tol) return Status::converged;
   if (m.driven > kDivergenceBound) {

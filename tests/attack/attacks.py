@@ -22,9 +22,6 @@ import urllib.parse
 # alone, "nginx": through deploy/nginx). They are skipped with a printed note; whoever fixes the item removes
 # the entry, so that the attack guards the fix from then on.
 KNOWN_FAILING = {
-    "deadline_inside_sweep_cell": ({"direct", "nginx"}, "item 1: deadlines stop only between sweep cells"),
-    "iterates_output_cap": ({"direct", "nginx"}, "item 3: include_iterates output is not capped"),
-    "sigterm_during_long_work": ({"direct"}, "item 7: SIGTERM waits for a running sweep cell"),
 }
 
 TIMEOUT = 15.0  # seconds any single exchange may take
@@ -308,8 +305,45 @@ def deadline_inside_sweep_cell(t):
 def iterates_output_cap(t):
     body = json.dumps({"n": 64, "h": 8, "method": "fixed-point", "max_iterations": 10000, "include_iterates": True})
     status, _, data, secs = t.request("POST", "/api/v1/solve", body, timeout=20.0)
-    expect(status in (400, 422, 413), f"status {status} with {len(data)} bytes after {secs:.1f} s")
+    expect(status == 413, f"status {status} with {len(data)} bytes after {secs:.1f} s")
+    expect(error_field(data) == "include_iterates", f"error names {error_field(data)!r}: {data[:160]!r}")
     return f"{status} before work ({secs:.2f} s)"
+
+
+def image_pixels_cap(t):
+    body = json.dumps({"n": [3], "h": [0.5], "methods": ["newton-group"], "width": 4096, "height": 4096})
+    status, _, data, secs = t.request("POST", "/api/v1/render/heatmap", body)
+    expect(status == 413 and error_field(data) == "width", f"status {status}: {data[:160]!r}")
+    return f"413 field=width ({secs:.2f} s)"
+
+
+def deadline_inside_integration(t):
+    # The reference solution and the stage solves of a long integration must stop at the 3 s deadline.
+    body = json.dumps({"problem": "paper-sine", "n": 64, "t_end": 100, "h": 0.5})
+    status, _, data, secs = t.request("POST", "/api/v1/integrate", body, timeout=40.0)
+    expect(status == 504, f"status {status}: {data[:120]!r}")
+    expect(secs < 6.0, f"504 after {secs:.1f} s with a 3 s deadline")
+    expect(b"3 s" in data, f"deadline message: {data[:160]!r}")
+    return f"504 after {secs:.1f} s"
+
+
+def heatmap_get_needs_grid(t):
+    status, _, data, _ = t.request("GET", "/api/v1/render/heatmap")
+    expect(status == 400 and error_field(data) in ("n", "h"), f"status {status}: {data[:160]!r}")
+    return f"{status} field={error_field(data)}"
+
+
+def cross_site_work(t):
+    path = "/api/v1/render/heatmap?n=3&h=0.5&methods=newton-group"
+    answers = {}
+    for name, headers in {"sec-fetch-site": {"Sec-Fetch-Site": "cross-site"},
+                          "origin": {"Origin": "http://evil.example"}}.items():
+        answers[name] = t.request("GET", path, headers=headers)[0]
+    form = t.request("POST", "/api/v1/solve", '{"n":3}', {"Origin": "http://evil.example",
+                                                          "Content-Type": "application/x-www-form-urlencoded"})[0]
+    answers["form post"] = form
+    expect(all(s == 403 for s in answers.values()), f"cross-site answers: {answers}")
+    return f"403 for {sorted(answers)}"
 
 
 def ndjson_stream(t):
@@ -417,7 +451,8 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            huge_sweep_grid, wrong_content_type, trailing_nul_in_json, oversized_body, valid_9k_body_as_form,
            expect_continue_oversized, many_headers, chunked_smuggling, pipelined_requests, range_on_api_route,
            metrics_method_injection, slow_header_drip, idle_connections, deadline_inside_sweep_cell,
-           iterates_output_cap, ndjson_stream, sse_stream, stream_first_record_early]
+           iterates_output_cap, image_pixels_cap, deadline_inside_integration, heatmap_get_needs_grid,
+           cross_site_work, ndjson_stream, sse_stream, stream_first_record_early]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work]  # direct mode only: they start servers
 
 

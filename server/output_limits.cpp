@@ -1,0 +1,56 @@
+#include "server/output_limits.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "server/http_errors.hpp"
+
+namespace lienewton::service {
+namespace {
+
+// Values per step record and per sweep cell in the JSON result (step, t, iterations, residual, status,
+// energy; method, n, h, status, reason, iterations, rate, residual, seconds).
+constexpr double kStepValues = 6;
+constexpr double kCellValues = 9;
+
+void refuse_beyond(double values, const OutputLimits& limits, const char* field, const std::string& what) {
+  if (values <= static_cast<double>(limits.max_values)) return;
+  throw ApiError(413, "output_too_large", field,
+                 what + " would return " + std::to_string(static_cast<long long>(values)) +
+                     " numbers, more than the server's limit of " + std::to_string(limits.max_values));
+}
+
+}  // namespace
+
+void check_output(const SolveRequest& r, const OutputLimits& limits) {
+  if (!r.include_iterates) return;
+  const double values = (r.max_iterations + 1.0) * r.n * r.n;
+  refuse_beyond(values, limits, "include_iterates", "include_iterates with max_iterations " +
+                                                         std::to_string(r.max_iterations) + " and n " + std::to_string(r.n));
+}
+
+void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
+  const double steps = std::ceil(r.t_end / r.h);
+  const double values = steps * kStepValues + (r.frames + 1.0) * r.n * r.n;
+  refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");
+}
+
+void check_output(const SweepRequest& r, const OutputLimits& limits) {
+  const double cells = static_cast<double>(r.methods.size()) * static_cast<double>(r.n.size()) * static_cast<double>(r.h.size());
+  refuse_beyond(cells * kCellValues, limits, "h", "this sweep grid");
+}
+
+void check_image_pixels(const json& body, const OutputLimits& limits) {
+  if (!body.is_object()) return;
+  auto size = [&](const char* field) -> double {
+    const auto it = body.find(field);
+    return it != body.end() && it->is_number_integer() ? it->get<double>() : 0.0;
+  };
+  const double pixels = size("width") * size("height");
+  if (pixels <= static_cast<double>(limits.max_image_pixels)) return;
+  throw ApiError(413, "output_too_large", "width",
+                 "width x height = " + std::to_string(static_cast<long long>(pixels)) +
+                     " pixels, more than the server's limit of " + std::to_string(limits.max_image_pixels));
+}
+
+}  // namespace lienewton::service

@@ -1,0 +1,25 @@
+#pragma once
+// Caps on what a request may make the server produce, checked after validation and before any work: a
+// result's numbers (iterates x N^2, frames x N^2, steps, sweep cells) and a render's pixels. Beyond a cap the
+// request is refused with 413 "output_too_large" naming the field to change.
+#include <cstddef>
+
+#include "core/integrate.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
+#include "server/json_codec.hpp"
+
+namespace lienewton::service {
+
+struct OutputLimits {
+  std::size_t max_values = 1'000'000;        // numbers in one result (about 20 MB of JSON)
+  std::size_t max_image_pixels = 4'194'304;  // width x height of one PNG (2048 x 2048)
+};
+
+void check_output(const SolveRequest& request, const OutputLimits& limits);
+void check_output(const IntegrateRequest& request, const OutputLimits& limits);
+void check_output(const SweepRequest& request, const OutputLimits& limits);
+// width x height of a render request, where both are given as integers (else the parser judges them).
+void check_image_pixels(const json& body, const OutputLimits& limits);
+
+}  // namespace lienewton::service
