@@ -292,7 +292,7 @@ def idle_connections(t):
 
 
 def deadline_inside_sweep_cell(t):
-    # One cell that iterates for about a minute; the deadline (run_attacks.sh: --request-timeout 3) must
+    # One cell that iterates for about a minute; the deadline (run_attacks.sh: --sweep-timeout 3) must
     # end it within about one iteration, not after the cell.
     body = json.dumps({"n": [16], "h": [8], "methods": ["newton-group"], "differential": "finite-difference",
                        "max_iterations": 10000})

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the attack battery (tests/attack/attacks.py) against lienewton-server on a free loopback port.
 #   tests/attack/run_attacks.sh [--via-nginx] [SERVER_BIN]     (default build/bin/lienewton-server)
-# Direct: one server with a 3 s request deadline. --via-nginx: deploy/run_local.sh starts nginx with
+# Direct: one server with 3 s request and sweep deadlines. --via-nginx: deploy/run_local.sh starts nginx with
 # deploy/nginx/lienewton.conf in front of 2 replicas, and the same battery runs through nginx.
 # Loopback only; the whole run is bounded (timeout below).
 set -euo pipefail
@@ -16,10 +16,10 @@ pid=""
 cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; wait 2>/dev/null; rm -rf "$log"; }
 trap cleanup EXIT
 if [ "$mode" = nginx ]; then
-  LIENEWTON_REQUEST_TIMEOUT=3 "$root/deploy/run_local.sh" --port "$port" --replicas 2 --server-bin "$server_bin" \
+  LIENEWTON_REQUEST_TIMEOUT=3 LIENEWTON_SWEEP_TIMEOUT=3 "$root/deploy/run_local.sh" --port "$port" --replicas 2 --server-bin "$server_bin" \
     >"$log/front.log" 2>&1 &
 else
-  "$server_bin" --host 127.0.0.1 --port "$port" --request-timeout 3 --web-root "$root/web" >"$log/server.log" 2>&1 &
+  "$server_bin" --host 127.0.0.1 --port "$port" --request-timeout 3 --sweep-timeout 3 --web-root "$root/web" >"$log/server.log" 2>&1 &
 fi
 pid=$!
 for _ in $(seq 100); do curl -sf -m 1 "http://127.0.0.1:$port/livez" >/dev/null && break; sleep 0.1; done
