@@ -182,13 +182,16 @@ json schemas() {
 std::string status_text(int status) {
   switch (status) {
     case 400: return "Malformed or invalid request (the error names the field)";
+    case 403: return "Cross-site request (Sec-Fetch-Site cross-site, or Origin not matching Host)";
     case 404: return "Not found";
     case 405: return "Method not allowed";
+    case 408: return "Request head or body not read within --request-read-timeout";
     case 411: return "Content-Length required (no Transfer-Encoding)";
-    case 413: return "Body larger than --max-body";
+    case 413: return "Body larger than --max-body, or output_too_large (--max-output-values, --max-image-pixels)";
     case 415: return "Body is not JSON, or is compressed";
     case 416: return "More than one byte range";
     case 422: return "Valid JSON, impossible request";
+    case 431: return "Headers beyond --max-header-bytes or --max-headers";
     case 503: return "Over capacity, draining, or renderer unavailable";
     case 504: return "Deadline passed (--request-timeout; --sweep-timeout for sweeps and heatmaps)";
     default: return "Error";

@@ -5,8 +5,8 @@
 namespace lienewton::service {
 namespace {
 
-const std::vector<int> kJsonPostErrors{400, 411, 413, 415, 422, 503, 504};
-const std::vector<int> kGetWorkErrors{400, 422, 503, 504};
+const std::vector<int> kJsonPostErrors{400, 403, 408, 411, 413, 415, 422, 431, 503, 504};
+const std::vector<int> kGetWorkErrors{400, 403, 408, 413, 422, 431, 503, 504};
 
 std::vector<RouteSpec> build_table() {
   const std::string ndjson = "application/x-ndjson";
