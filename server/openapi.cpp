@@ -170,7 +170,7 @@ json schemas() {
                       "||f(y_n)|| against the solver's own CPU time (TraceRecord.cpu_seconds), right panel against n."},
       {"type", "object"},
       {"properties", {{"methods", array_of(method)}, {"differentials", array_of(differential)}, {"width", width}, {"height", width}}}};
-  s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining"}}}}}, {"status"}, false);
+  s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
   s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
                              {"message", json{{"type", "string"}}}},
