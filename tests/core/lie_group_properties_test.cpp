@@ -16,6 +16,7 @@
 
 #include "core/groups/so3_group.hpp"
 #include "core/groups/son_group.hpp"
+#include "random_algebra.hpp"
 #include "rn_group.hpp"
 
 namespace lienewton {
@@ -60,17 +61,8 @@ class LieGroupProperties : public ::testing::Test {
   G g = Case::group();
   std::mt19937_64 rng{20240601u + static_cast<unsigned>(g.dim())};
 
-  V random_direction() {
-    std::normal_distribution<double> normal;
-    V v = zero_vector(g);
-    for (int i = 0; i < g.dim(); ++i) v(i) = normal(rng);
-    return v / v.norm();
-  }
-  // A random vector of norm in (lo, hi): on SO(N) every rotation angle of it is at most its norm.
-  V random_vector(double lo, double hi) {
-    std::uniform_real_distribution<double> r(lo, hi);
-    return r(rng) * random_direction();
-  }
+  V random_direction() { return test::random_direction(g, rng); }
+  V random_vector(double lo, double hi) { return test::random_vector(g, rng, lo, hi); }
   // Unit directions: every basis vector, plus two random planes a b^T - b a^T of a matrix group (one rotation
   // angle equal to the norm), or two random directions.
   std::vector<V> axes() {

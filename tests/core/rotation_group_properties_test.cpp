@@ -20,6 +20,7 @@
 
 #include "core/groups/so3_group.hpp"
 #include "core/groups/son_group.hpp"
+#include "random_algebra.hpp"
 
 namespace lienewton {
 namespace {
@@ -61,17 +62,8 @@ class RotationGroupProperties : public ::testing::Test {
   G g = Case::group();
   std::mt19937_64 rng{20240601u + N};
 
-  V random_direction() {
-    std::normal_distribution<double> normal;
-    V v = zero_vector(g);
-    for (int i = 0; i < g.dim(); ++i) v(i) = normal(rng);
-    return v / v.norm();
-  }
-  // A random vector of norm in (lo, hi).
-  V random_vector(double lo, double hi) {
-    std::uniform_real_distribution<double> r(lo, hi);
-    return r(rng) * random_direction();
-  }
+  V random_direction() { return test::random_direction(g, rng); }
+  V random_vector(double lo, double hi) { return test::random_vector(g, rng, lo, hi); }
   // Coordinates of a unit rotation generator in a random 2-plane: a b^T - b a^T with a, b orthonormal.
   // For SO(3) this is a rotation about the random axis a x b; for SO(N) its only rotation angle equals its norm.
   V random_plane() {
