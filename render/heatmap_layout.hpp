@@ -22,6 +22,7 @@ struct HeatmapGrid {
 
 // Throws std::invalid_argument when the sweep is empty or has a non-positive or non-finite h.
 HeatmapGrid make_grid(const SweepResult& sweep);
+HeatmapGrid make_grid(SweepResult&&) = delete;  // the grid points into the sweep: it must outlive the grid
 
 struct LegendEntry {
   std::string label;

@@ -88,7 +88,8 @@ TEST(Heatmap, GridOrdersMethodsAsGivenAndNAndHAscending) {
 }
 
 TEST(Heatmap, CellCentersAreLaidOutLog2HRightwardNUpward) {
-  const HeatmapLayout layout = layout_heatmap(make_grid(tiny_sweep()), HeatmapMetric::iterations, 0, 0);
+  const SweepResult sweep = tiny_sweep();
+  const HeatmapLayout layout = layout_heatmap(make_grid(sweep), HeatmapMetric::iterations, 0, 0);
   EXPECT_LT(layout.cell_center(0, 0, 0).x, layout.cell_center(0, 0, 1).x);
   EXPECT_GT(layout.cell_center(0, 0, 0).y, layout.cell_center(0, 1, 0).y);  // larger N is higher
   EXPECT_LT(layout.cell_center(0, 0, 2).x, layout.cell_center(1, 0, 0).x);  // panels side by side
@@ -109,7 +110,8 @@ TEST(Heatmap, ResidualCellsMatchTheColormapAtAGivenSize) {
 // Rates are coloured on 0..3 whatever the grid holds, so 1 and 2 always look different; the tiny sweep's
 // rates above 3 are outliers, drawn with a dot.
 TEST(Heatmap, RateScaleIsFixedAndOutliersAreFlagged) {
-  const HeatmapGrid grid = make_grid(tiny_sweep());
+  const SweepResult sweep = tiny_sweep();  // the grid points into it
+  const HeatmapGrid grid = make_grid(sweep);
   const MetricScale scale = metric_scale(grid, HeatmapMetric::rate);
   EXPECT_EQ(scale.lo, kRateColorLo);
   EXPECT_EQ(scale.hi, kRateColorHi);
@@ -129,7 +131,8 @@ TEST(Heatmap, RateScaleIsFixedAndOutliersAreFlagged) {
 }
 
 TEST(Heatmap, IterationScaleSpansTheConvergedCells) {
-  const MetricScale scale = metric_scale(make_grid(tiny_sweep()), HeatmapMetric::iterations);
+  const SweepResult sweep = tiny_sweep();
+  const MetricScale scale = metric_scale(make_grid(sweep), HeatmapMetric::iterations);
   EXPECT_EQ(scale.lo, 3);
   EXPECT_EQ(scale.hi, 7);
 }
