@@ -213,26 +213,75 @@ double angle_over_sine(double c) {
   return std::acos(c) / std::sqrt(d * (1.0 + c));
 }
 
-// log R = F(S) A (see son.hpp); nothing when an angle exceeds 3pi/4.
-std::optional<Mat> log_from_symmetric_part(const Mat& r, double& max_angle) {
-  const Mat s = 0.5 * (r + r.transpose());
+// The Schur form of a rotation: Q, the angles, and the checks of log's domain (det -1, an angle within margin of
+// pi). Throws LogDomainError.
+SpectralForm schur_form_of_rotation(const Mat& r, double margin) {
+  Eigen::RealSchur<Mat> schur(r);
+  const Mat& t = schur.matrixT();
+  SpectralForm s;
+  s.q = schur.matrixU();
+  s.blocks = read_blocks(t, [](double a, double b, double c, double d) {
+    return std::atan2(0.5 * (c - b), 0.5 * (a + d));
+  });
+  int minus_ones = 0;
+  for (const auto& b : s.blocks)
+    if (b.size == 1 && t(b.start, b.start) < 0.0) ++minus_ones;
+  if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
+  const double angle = minus_ones > 0 ? std::numbers::pi : s.max_angle();
+  if (angle > std::numbers::pi - margin)
+    throw LogDomainError("log undefined: rotation angle " + std::to_string(angle) + " is at pi", angle);
+  return s;
+}
+
+// Above this cosine of the largest angle (angles below ~0.14) the angle is read from ||log R||_2 (see below).
+constexpr double kAngleFromNormMinCos = 0.99;
+
+// log R = F(S) A (see son.hpp) on the eigenvectors of S with angles up to 3pi/4, one symmetric eigensolve.
+// The eigenvectors with larger angles (cosines below kSymmetricLogMinCos, where F is steep) span an invariant
+// subspace W of R, in pairs; with far_planes the k x k rotation W^T R W (k = 2 for one such plane) is logged by
+// its Schur form, which reads those angles to absolute accuracy eps, and the domain checks run there.
+// Nothing when an angle exceeds 3pi/4 and !far_planes, or when W is not invariant (a cluster split at the
+// threshold): the caller then takes the Schur form of all of R. Throws LogDomainError (det -1, angle at pi).
+std::optional<Mat> log_from_symmetric_part(const Mat& r, bool far_planes, double* max_angle) {
+  const int n = static_cast<int>(r.rows());
   const Mat a = 0.5 * (r - r.transpose());
-  const Eigen::SelfAdjointEigenSolver<Mat> eig(s);
-  const Vec& c = eig.eigenvalues();  // ascending
-  if (c(0) < kSymmetricLogMinCos) return std::nullopt;
-  const Vec f = c.unaryExpr([](double x) { return angle_over_sine(x); });
+  const Eigen::SelfAdjointEigenSolver<Mat> eig(0.5 * (r + r.transpose()));
+  const Vec& c = eig.eigenvalues();  // ascending: the largest angles first
   const Mat& v = eig.eigenvectors();
-  Mat l = v * f.asDiagonal() * (v.transpose() * a);
-  l = (0.5 * (l - l.transpose())).eval();
-  // acos of a cosine near 1 has absolute error sqrt(eps) (2.98e-8 at angle 1e-16); below pi/2 the angle is
-  // read from log itself: ||L||_2 = max theta, with L's relative accuracy.
-  if (c(0) > 0.0) {
-    const Eigen::SelfAdjointEigenSolver<Mat> ltl(l.transpose() * l, Eigen::EigenvaluesOnly);
-    max_angle = std::sqrt(std::max(0.0, ltl.eigenvalues().maxCoeff()));
-  } else {
-    max_angle = std::acos(c(0));
+  int k = 0;
+  while (k < n && c(k) < kSymmetricLogMinCos) ++k;
+  if (k > 0 && !far_planes) return std::nullopt;
+  if (k % 2 == 1) {  // a plane's two equal cosines straddle the threshold, or det R = -1 (an eigenvalue -1 alone)
+    if (k < n && c(k) - c(k - 1) < 1e-6) ++k;
+    else throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
   }
-  return l;
+  const Mat b = v.transpose() * a;  // row i is -(A v_i)^T: its norm is the sine of v_i's angle
+  const Vec f = c.tail(n - k).unaryExpr([](double x) { return angle_over_sine(x); });
+  Mat l = v.rightCols(n - k) * f.asDiagonal() * b.bottomRows(n - k);
+  double angle = 0.0;
+  if (k > 0) {
+    const auto w = v.leftCols(k);
+    const Mat rw = w.transpose() * r * w;
+    if (!((rw.transpose() * rw - Mat::Identity(k, k)).norm() <= 1e-8)) return std::nullopt;
+    const SpectralForm far = schur_form_of_rotation(rw, kLogDomainMargin);
+    l.noalias() += w * far.skew() * w.transpose();
+    angle = far.max_angle();
+  } else if (c(0) < kAngleFromNormMinCos) {
+    // sin = ||A v_0|| (first-order insensitive to v_0's rounding: A^2 = S^2 - I keeps S's eigenspaces).
+    angle = std::atan2(b.row(0).norm(), c(0));
+  } else {
+    // acos of a cosine near 1 has absolute error sqrt(eps) (2.98e-8 at angle 1e-16), and for tiny angles S's
+    // eigenvectors are any basis: the angle is read from log itself, ||L||_2 = max theta, with L's relative
+    // accuracy.
+    l = (0.5 * (l - l.transpose())).eval();
+    if (max_angle) {
+      const Eigen::SelfAdjointEigenSolver<Mat> ltl(l.transpose() * l, Eigen::EigenvaluesOnly);
+      *max_angle = std::sqrt(std::max(0.0, ltl.eigenvalues().maxCoeff()));
+    }
+    return l;
+  }
+  if (max_angle) *max_angle = angle;
+  return (0.5 * (l - l.transpose())).eval();
 }
 
 }  // namespace
@@ -264,11 +313,7 @@ Mat expm1(const Mat& v) {
 
 Mat log(const Mat& r, double* max_angle) {
   check_orthogonal(r, 1e-8);
-  double angle = 0.0;
-  if (auto l = log_from_symmetric_part(r, angle)) {
-    if (max_angle) *max_angle = angle;
-    return *l;
-  }
+  if (auto l = log_from_symmetric_part(r, true, max_angle)) return *l;
   const SpectralForm s = spectral_form_of_rotation(r);
   if (max_angle) *max_angle = s.max_angle();
   return s.skew();
@@ -276,22 +321,8 @@ Mat log(const Mat& r, double* max_angle) {
 
 SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol, double margin) {
   check_orthogonal(r, orthogonality_tol);
-  Eigen::RealSchur<Mat> schur(r);
-  const Mat& t = schur.matrixT();
-  SpectralForm s;
-  s.q = schur.matrixU();
-  s.blocks = read_blocks(t, [](double a, double b, double c, double d) {
-    return std::atan2(0.5 * (c - b), 0.5 * (a + d));
-  });
-  int minus_ones = 0;
-  for (const auto& b : s.blocks)
-    if (b.size == 1 && t(b.start, b.start) < 0.0) ++minus_ones;
-  if (minus_ones % 2 == 1) throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
-  const double angle = minus_ones > 0 ? std::numbers::pi : s.max_angle();
-  if (angle > std::numbers::pi - margin)
-    throw LogDomainError("log undefined: rotation angle " + std::to_string(angle) + " is at pi", angle);
-  double unused = 0.0;
-  if (auto l = log_from_symmetric_part(r, unused)) s.accurate_skew = std::move(*l);
+  SpectralForm s = schur_form_of_rotation(r, margin);
+  if (auto l = log_from_symmetric_part(r, false, nullptr)) s.accurate_skew = std::move(*l);
   return s;
 }
 

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "core/groups/son.hpp"
 
@@ -110,6 +112,40 @@ TEST(SONLog, DomainMarginAtPi) {
   }
   // Two planes at exactly pi (det +1: eigenvalue -1 four times), e.g. -I in SO(4).
   EXPECT_THROW((void)log(-Mat::Identity(4, 4)), LogDomainError);
+}
+
+// log from one symmetric eigensolve with the planes beyond 3pi/4 logged on their own invariant block (son.cpp):
+// against R = Q blockdiag(rot theta_k, 1) Q^T with known angles, log R = Q blockdiag(theta_k J, 0) Q^T, to
+// 1e-14 relative, and the largest angle to 1e-14 absolute. One far plane, two (distinct and equal angles, a
+// 4-dimensional eigenspace of S), a plane at pi - 1e-8, next to a small and a tiny angle; and det -1 with a
+// far plane still refused.
+TEST(SONLog, FarPlanesOnTheirInvariantBlock) {
+  std::mt19937_64 rng(21);
+  const std::vector<std::vector<double>> angle_sets = {
+      {2.5}, {3.0, 2.8}, {3.1, 3.1}, {kPi - 1e-8, 0.3}, {2.9, 1e-9, 0.7}, {2.4, 2.3561944901923448}};
+  for (int n : {2, 4, 7, 15})
+    for (const auto& angles : angle_sets) {
+      if (2 * static_cast<int>(angles.size()) > n) continue;
+      const Mat q = random_rotation(n, rng);
+      Mat d = Mat::Identity(n, n), l = Mat::Zero(n, n);
+      for (std::size_t p = 0; p < angles.size(); ++p) {
+        const int i = 2 * static_cast<int>(p);
+        const double t = angles[p];
+        d.block<2, 2>(i, i) << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
+        l(i, i + 1) = -t;
+        l(i + 1, i) = t;
+      }
+      const Mat r = q * d * q.transpose(), expected = q * l * q.transpose();
+      double angle = 0;
+      const Mat got = log(r, &angle);
+      EXPECT_LE((got - expected).norm() / expected.norm(), 1e-14) << "n = " << n << ", angle " << angles[0];
+      EXPECT_NEAR(angle, *std::max_element(angles.begin(), angles.end()), 1e-14) << "n = " << n;
+      if (n > 2 * static_cast<int>(angles.size())) {  // a reflection in a fixed direction: det -1
+        Mat flip = Mat::Identity(n, n);
+        flip(n - 1, n - 1) = -1;
+        EXPECT_THROW((void)log(Mat(q * d * flip * q.transpose())), LogDomainError) << "n = " << n;
+      }
+    }
 }
 
 // max_angle (no domain check) and SpectralForm::max_angle agree, and the spectral form rebuilds R and v.
