@@ -226,12 +226,12 @@ const char* problem_name(ProblemKind k) { return k == ProblemKind::rigid_body ? 
 
 void Solve_Lienewton(benchmark::State& state, ProblemKind problem) {
   SolveRequest req;
-  req.problem = problem;
-  req.n = 3;
+  req.problem.kind = problem;
+  req.problem.n = 3;
   req.h = 0.5;
-  req.method = Method::newton_group;
-  req.differential = Differential::exact;
-  req.z = start_point(3, 1);
+  req.solver.method = Method::newton_group;
+  req.solver.differential = Differential::exact;
+  req.problem.z = start_point(3, 1);
   const SolveResult check = solve(req);
   if (check.status != Status::converged) state.SkipWithError("lienewton SO(3) solve did not converge");
   // Heap allocations of a whole solve() call (request copy, field, result and trace: outside the iterations).
@@ -252,12 +252,12 @@ BENCHMARK_CAPTURE(Solve_Lienewton, paper_linear, ProblemKind::paper_linear)->Uni
 // lienewton's finite-difference differential: isolates what the exact closed forms buy.
 void Solve_LienewtonFD(benchmark::State& state, ProblemKind problem) {
   SolveRequest req;
-  req.problem = problem;
-  req.n = 3;
+  req.problem.kind = problem;
+  req.problem.n = 3;
   req.h = 0.5;
-  req.method = Method::newton_group;
-  req.differential = Differential::finite_difference;
-  req.z = start_point(3, 1);
+  req.solver.method = Method::newton_group;
+  req.solver.differential = Differential::finite_difference;
+  req.problem.z = start_point(3, 1);
   const SolveResult check = solve(req);
   if (check.status != Status::converged) state.SkipWithError("lienewton SO(3) FD solve did not converge");
   for (auto _ : state) {
@@ -275,15 +275,15 @@ BENCHMARK_CAPTURE(Solve_LienewtonFD, paper_linear, ProblemKind::paper_linear)->U
 // the iterates of the rigid-body solve above. Compare with SO3_Exp + SO3_Log + SO3_DexpinvMatrix + SO3_LUSolve3.
 void SO3_NewtonIteration(benchmark::State& state) {
   SolveRequest req;
-  req.problem = ProblemKind::rigid_body;
-  req.n = 3;
+  req.problem.kind = ProblemKind::rigid_body;
+  req.problem.n = 3;
   req.h = 0.5;
-  req.z = start_point(3, 1);
-  req.include_iterates = true;
+  req.problem.z = start_point(3, 1);
+  req.solver.include_iterates = true;
   const SolveResult solved = solve(req);
   const SO3Group group;
-  const auto field = make_field(group, req.problem, req.rigid_body);
-  const auto eq = Equation<SO3Group>::implicit_euler(group, Eigen::Matrix3d(*req.z), req.h, *field);
+  const auto field = make_field(group, req.problem.kind, req.problem.rigid_body);
+  const auto eq = Equation<SO3Group>::implicit_euler(group, Eigen::Matrix3d(*req.problem.z), req.h, *field);
   std::vector<Eigen::Matrix3d> ys;
   for (const auto& t : solved.trace) {
     if (t.iteration < solved.iterations) ys.push_back(t.y);
@@ -322,10 +322,10 @@ void Solve_Baseline(benchmark::State& state, ProblemKind problem) {
   p.z = start_point(3, 1);
   p.h = 0.5;
   SolveRequest req;
-  req.problem = problem;
-  req.n = 3;
+  req.problem.kind = problem;
+  req.problem.n = 3;
   req.h = 0.5;
-  req.z = p.z;
+  req.problem.z = p.z;
   const SolveResult ours = solve(req);
   const baseline::Result check = baseline::newton_group(p);
   if (!check.converged) state.SkipWithError("baseline SO(3) solve did not converge");
@@ -369,8 +369,8 @@ void Sweep_Lienewton(benchmark::State& state, Differential differential, std::st
     cells = converged = 0;
     for (ProblemKind problem : kSweepProblems) {
       SweepRequest req;
-      req.problem = problem;
-      req.differential = differential;
+      req.problem.kind = problem;
+      req.solver.differential = differential;
       req.n = g.n;
       req.h = g.h;
       const SweepResult res = sweep(req);

@@ -30,13 +30,13 @@ double peak_rss_mb() {
 
 SolveRequest large_n_request(int n, Differential differential, LinearSolver linear_solver) {
   SolveRequest req;
-  req.problem = ProblemKind::paper_linear;
-  req.n = n;
+  req.problem.kind = ProblemKind::paper_linear;
+  req.problem.n = n;
   req.h = 0.25;
-  req.method = Method::newton_group;
-  req.differential = differential;
-  req.seed = 1;
-  req.linear_solver = linear_solver;
+  req.solver.method = Method::newton_group;
+  req.solver.differential = differential;
+  req.problem.seed = 1;
+  req.solver.linear_solver = linear_solver;
   return req;
 }
 
@@ -44,7 +44,7 @@ SolveRequest large_n_request(int n, Differential differential, LinearSolver line
 void time_solve(benchmark::State& state, const SolveRequest& req, const char* expected_solver) {
   const SolveResult check = solve(req);
   if (check.status != Status::converged) {
-    state.SkipWithError(("N = " + std::to_string(req.n) + " did not converge: " + check.reason).c_str());
+    state.SkipWithError(("N = " + std::to_string(req.problem.n) + " did not converge: " + check.reason).c_str());
     return;
   }
   if (check.linear_solver != expected_solver) {
@@ -56,8 +56,8 @@ void time_solve(benchmark::State& state, const SolveRequest& req, const char* ex
     SolveResult r = solve(req);
     benchmark::DoNotOptimize(r.residual);
   }
-  state.counters["N"] = req.n;
-  state.counters["q"] = req.n * (req.n - 1) / 2;
+  state.counters["N"] = req.problem.n;
+  state.counters["q"] = req.problem.n * (req.problem.n - 1) / 2;
   state.counters["iterations"] = check.iterations;
   state.counters["residual"] = check.residual;
   // Seconds per Newton iteration: iterations / time inverted.
@@ -65,7 +65,7 @@ void time_solve(benchmark::State& state, const SolveRequest& req, const char* ex
       check.iterations, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["peak_rss_MB"] = peak_rss_mb();
   state.SetLabel(std::string(expected_solver) + ", " +
-                 (req.differential == Differential::exact ? "exact" : "finite-difference") +
+                 (req.solver.differential == Differential::exact ? "exact" : "finite-difference") +
                  ", paper-linear, newton-group, h = 2^-2, seed 1");
 }
 

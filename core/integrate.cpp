@@ -7,7 +7,6 @@
 #include "problems.hpp"
 #include "reference_solution.hpp"
 #include "solvers/run_method.hpp"
-#include "start_point.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -44,14 +43,13 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
                              const StepCallback& on_step) {
   using Element = typename G::Element;
   using Vector = typename G::Vector;
-  const auto field = make_field(group, req.problem, req.rigid_body);
+  const auto field = make_field(group, req.problem.kind, req.problem.rigid_body);
   const DirkTableau& tab = tableau_of(req.integrator);
-  const SolverOptions opt{.tol = req.tol, .max_iterations = req.max_iterations, .include_iterates = false,
-                          .differential = req.differential, .linear_solver = LinearSolver::auto_select,
-                          .stopping = req.stopping};
+  SolverOptions opt = req.solver;
+  opt.include_iterates = false;
   const int steps = static_cast<int>(std::llround(req.t_end / req.h));
   const double h = req.t_end / steps;
-  const RigidBody* body = req.problem == ProblemKind::rigid_body
+  const RigidBody* body = req.problem.kind == ProblemKind::rigid_body
                               ? &static_cast<const VectorFieldOf<G, RigidBody>&>(*field).problem()
                               : nullptr;
   auto energy = [&](const Element& y) { return body ? body->energy(Eigen::Matrix3d(y)) : 0.0; };
@@ -75,7 +73,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
       Element z = y;
       for (int j = 0; j < i; ++j) z = group.times_exp(z, tab.a[i][j] * hg[j]);
       const auto eq = Equation<G>::implicit_euler(group, z, h * tab.a[i][i], *field);
-      const SolveResult stage = run_method(req.method, eq, opt, {});
+      const SolveResult stage = run_method(opt.method, eq, opt, {});
       rec.iterations += stage.iterations;
       rec.residual = std::max(rec.residual, stage.residual);
       rec.status = worse(rec.status, stage.status);
@@ -121,28 +119,24 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
 }  // namespace
 
 void validate(const IntegrateRequest& req) {
-  validation::check_n("n", req.n);
+  validate(req.problem);
   validation::check_h("h", req.h);
   if (!std::isfinite(req.t_end) || req.t_end <= 0.0 || req.t_end > validation::kMaxTEnd)
     validation::invalid("t_end", "t_end must be a finite number in (0, 100]");
   if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
   if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
-  validation::check_tol(req.tol);
-  validation::check_max_iterations(req.max_iterations);
-  validation::check_problem_dimension(req.problem, req.n);
-  validation::check_rigid_body(req.rigid_body);
-  validation::check_start_point(req.z, req.n);
+  validate(req.solver);
   if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
 }
 
 IntegrateResult integrate(const IntegrateRequest& req, const StepCallback& on_step) {
   validate(req);
-  const Eigen::MatrixXd y0 = req.z ? *req.z : start_point(req.n, req.seed);
+  const Eigen::MatrixXd y0 = req.problem.start();
   IntegrateResult res =
-      with_group(req.n, [&](const auto& group) { return integrate_on(group, req, y0, on_step); });
+      with_group(req.problem.n, [&](const auto& group) { return integrate_on(group, req, y0, on_step); });
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
-    res.global_error = (res.y - reference_solution(req.problem, req.rigid_body, y0, req.t_end)).norm();
+    res.global_error = (res.y - reference_solution(req.problem.kind, req.problem.rigid_body, y0, req.t_end)).norm();
     res.reference_seconds = thread_cpu_seconds() - start;
   }
   return res;

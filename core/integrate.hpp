@@ -1,26 +1,23 @@
 #pragma once
 // Time stepping of y' = y g(y) on [0, t_end] with implicit Lie group integrators whose stages are solved by
 // any solver/differential, compared against a reference solution.
+#include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
-#include "solve.hpp"
+#include "problem_spec.hpp"
+#include "solver_options.hpp"
+#include "status.hpp"
 
 namespace lienewton {
 
 struct IntegrateRequest {
-  ProblemKind problem = ProblemKind::rigid_body;
-  int n = 3;
+  ProblemSpec problem{.kind = ProblemKind::rigid_body};  // z is y(0)
+  SolverOptions solver{};  // for every stage equation (include_iterates is not used)
   double h = 0.1;
   double t_end = 1.0;
   Integrator integrator = Integrator::implicit_euler;
-  Method method = Method::newton_group;
-  Differential differential = Differential::exact;
-  double tol = 1e-13;
-  int max_iterations = 100;
-  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
-  std::uint64_t seed = 1;
-  std::optional<Eigen::MatrixXd> z;  // y(0); default start_point(n, seed)
-  RigidBodyParams rigid_body;
   int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none)
   bool reference = true;              // compute the reference solution and the global error
 };

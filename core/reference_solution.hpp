@@ -3,7 +3,8 @@
 // exact dexpinv, at a step far below the integrators' (kReferenceStepsPerUnit steps per unit of time).
 #include <Eigen/Dense>
 
-#include "solve.hpp"
+#include "options.hpp"
+#include "rigid_body_params.hpp"
 
 namespace lienewton {
 

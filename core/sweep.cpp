@@ -8,7 +8,6 @@
 #include <mutex>
 
 #include "parallel_for.hpp"
-#include "start_point.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -40,6 +39,14 @@ std::vector<int> largest_n_first(const SweepRequest& req) {
   return order;
 }
 
+// The spec of the cells at dimension n: the sweep's problem, started at start_point(n, seed).
+ProblemSpec at_dimension(const ProblemSpec& problem, int n) {
+  ProblemSpec cell = problem;
+  cell.n = n;
+  cell.z.reset();
+  return cell;
+}
+
 }  // namespace
 
 SweepRequest with_defaults(SweepRequest req) {
@@ -50,14 +57,9 @@ SweepRequest with_defaults(SweepRequest req) {
 
 void validate(const SweepRequest& req) {
   if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
-  for (int n : req.n) {
-    validation::check_n("n", n);
-    validation::check_problem_dimension(req.problem, n);
-  }
+  for (int n : req.n) validate(at_dimension(req.problem, n));
   for (double h : req.h) validation::check_h("h", h);
-  validation::check_tol(req.tol);
-  validation::check_max_iterations(req.max_iterations);
-  validation::check_rigid_body(req.rigid_body);
+  validate(req.solver);
   if (req.methods.size() * req.n.size() * req.h.size() > kMaxCells)
     validation::invalid("h", "the grid has more than " + std::to_string(kMaxCells) + " cells");
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
@@ -68,8 +70,11 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
   const SweepRequest req = with_defaults(request);
   validate(req);
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Eigen::MatrixXd> start_points;  // one z per N, shared by all methods and h: the paper's setup
-  for (int n : req.n) start_points.push_back(start_point(n, req.seed));
+  std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
+  for (int n : req.n) {
+    problems.push_back(at_dimension(req.problem, n));
+    problems.back().z = problems.back().start();
+  }
 
   const std::size_t per_method = req.n.size() * req.h.size();
   SweepResult result;
@@ -85,21 +90,13 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
   parallel_for(static_cast<int>(result.cells.size()), req.threads, [&](int index) {
     const std::size_t i = static_cast<std::size_t>(index);
     const std::size_t m = i / per_method, ni = (i % per_method) / req.h.size(), hi = i % req.h.size();
-    SolveRequest s;
-    s.problem = req.problem;
-    s.n = req.n[ni];
-    s.h = req.h[hi];
-    s.method = req.methods[m];
-    s.differential = req.differential;
-    s.tol = req.tol;
-    s.max_iterations = req.max_iterations;
-    s.stopping = req.stopping;
-    s.z = start_points[ni];
-    s.rigid_body = req.rigid_body;
+    SolveRequest s{problems[ni], req.solver, req.h[hi]};
+    s.solver.method = req.methods[m];
+    s.solver.include_iterates = false;
     const SolveResult r = solve(s, poll);
     if (r.status == Status::cancelled) return false;
     SweepCell& cell = result.cells[i];
-    cell = {s.method, s.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
+    cell = {s.solver.method, s.problem.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
     done[i] = 1;
     if (!on_cell) return true;
     std::lock_guard lock(callback_mutex);

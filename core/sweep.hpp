@@ -8,18 +8,15 @@
 
 namespace lienewton {
 
+// The base problem and solver options, varied over a grid: every cell is the solve of problem at one n (starting
+// at start_point(n, seed); problem.n and problem.z are not used) by one of methods (solver.method is not used).
 struct SweepRequest {
-  ProblemKind problem = ProblemKind::paper_linear;
+  ProblemSpec problem{};
+  SolverOptions solver{.differential = Differential::finite_difference};
   std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
-  Differential differential = Differential::finite_difference;
   std::vector<int> n;     // default: 2..15 (the paper's)
   std::vector<double> h;  // default: 2^-10 .. 2^10 (21 values)
-  std::uint64_t seed = 1;
-  double tol = 1e-13;
-  int max_iterations = 100;
-  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
   int threads = 0;        // 0: all cores
-  RigidBodyParams rigid_body;
 };
 
 struct SweepCell {

@@ -5,7 +5,8 @@
 #include <string>
 
 #include "request_error.hpp"
-#include "solve.hpp"
+#include "options.hpp"
+#include "rigid_body_params.hpp"
 
 namespace lienewton::validation {
 

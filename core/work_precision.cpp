@@ -10,7 +10,6 @@
 #include "order_fit.hpp"
 #include "parallel_for.hpp"
 #include "reference_solution.hpp"
-#include "start_point.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -25,20 +24,10 @@ std::vector<double> default_step_sizes() {
 }
 
 IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, double h) {
-  IntegrateRequest r;
-  r.problem = req.problem;
-  r.n = req.n;
-  r.h = h;
-  r.t_end = req.t_end;
-  r.integrator = c.integrator;
-  r.method = c.method;
-  r.differential = c.differential;
-  r.tol = req.tol;
-  r.max_iterations = req.max_iterations;
-  r.stopping = req.stopping;
-  r.seed = req.seed;
-  r.rigid_body = req.rigid_body;
-  r.reference = false;
+  IntegrateRequest r{.problem = req.problem, .solver = req.solver, .h = h, .t_end = req.t_end,
+                     .integrator = c.integrator, .reference = false};
+  r.solver.method = c.method;
+  r.solver.differential = c.differential;
   return r;
 }
 
@@ -85,9 +74,9 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
   if (req.h.empty()) req.h = default_step_sizes();
   const auto start = std::chrono::steady_clock::now();
   WorkPrecisionResult res;
-  const Eigen::MatrixXd y0 = start_point(req.n, req.seed);
   const double ref_start = thread_cpu_seconds();
-  const Eigen::MatrixXd y_ref = reference_solution(req.problem, req.rigid_body, y0, req.t_end);
+  const Eigen::MatrixXd y_ref =
+      reference_solution(req.problem.kind, req.problem.rigid_body, req.problem.start(), req.t_end);
   res.reference_seconds = thread_cpu_seconds() - ref_start;
 
   res.series.resize(req.choices.size());

@@ -14,17 +14,13 @@ struct WorkPrecisionChoice {
   Differential differential = Differential::exact;
 };
 
+// Every run integrates problem with solver, its integrator, method and differential taken from one of choices.
 struct WorkPrecisionRequest {
-  ProblemKind problem = ProblemKind::rigid_body;
-  int n = 3;
+  ProblemSpec problem{.kind = ProblemKind::rigid_body};
+  SolverOptions solver{};
   double t_end = 1.0;
-  std::vector<WorkPrecisionChoice> choices;
-  std::vector<double> h;  // default: 2^-2 .. 2^-7
-  double tol = 1e-13;
-  int max_iterations = 100;
-  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
-  std::uint64_t seed = 1;
-  RigidBodyParams rigid_body;
+  std::vector<WorkPrecisionChoice> choices{};
+  std::vector<double> h{};  // default: 2^-2 .. 2^-7
 };
 
 struct WorkPrecisionPoint {

@@ -122,12 +122,12 @@ ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
   return [this, request](const Emit& emit, const CancellationToken& token) {
     SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
       progress(t.iteration);
-      if (emit && !emit("iteration", to_json(t, request.include_iterates))) return false;
+      if (emit && !emit("iteration", to_json(t, request.solver.include_iterates))) return false;
       return !token.cancelled();
     });
     metrics_.solve_finished(std::string(to_string(result.status)), result.iterations);
     if (result.status == Status::cancelled) throw_stopped(token);
-    return to_json(result, request.include_iterates);
+    return to_json(result, request.solver.include_iterates);
   };
 }
 

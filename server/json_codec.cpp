@@ -166,6 +166,30 @@ int read_n(const Fields& f, const Limits& limits, int fallback) {
   return fallback;
 }
 
+// Whether a request names one dimension n (and may give z), or a grid of them (a sweep reads n itself).
+enum class Dimension { single, grid };
+
+// The ProblemSpec fields of a request; the request's Fields has already refused the ones it does not take.
+void read_problem_spec(const Fields& f, const Limits& limits, Dimension dimension, ProblemSpec& p) {
+  if (auto x = f["problem"]) p.kind = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  if (dimension == Dimension::single) p.n = read_n(f, limits, p.n);
+  if (auto x = f["seed"]) p.seed = read_u64(*x, "seed");
+  if (auto x = f["z"]) p.z = read_matrix(*x, "z", p.n);
+  if (auto x = f["rigid_body"]) p.rigid_body = read_rigid_body(*x, "rigid_body");
+}
+
+// The SolverOptions fields of a request, likewise.
+void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s) {
+  if (auto x = f["method"]) s.method = read_enum(*x, "method", method_from_string, kAllMethods);
+  if (auto x = f["differential"]) s.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
+  if (auto x = f["tol"]) s.tol = read_tol(*x, "tol");
+  if (auto x = f["max_iterations"]) s.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["linear_solver"])
+    s.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
+  if (auto x = f["stopping"]) s.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
+  if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
+}
+
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json optional_number(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
 
@@ -217,46 +241,30 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
                       "include_iterates", "rigid_body", "linear_solver", "stopping"});
   SolveRequest r;
-  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
-  r.n = read_n(f, limits, r.n);
+  read_problem_spec(f, limits, Dimension::single, r.problem);
+  read_solver_options(f, limits, r.solver);
   if (auto x = f["h"]) r.h = read_h(*x, "h");
-  if (auto x = f["method"]) r.method = read_enum(*x, "method", method_from_string, kAllMethods);
-  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
-  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
-  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
-  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
-  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
-  if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
-  if (auto x = f["include_iterates"]) r.include_iterates = read_bool(*x, "include_iterates");
-  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
-  if (auto x = f["linear_solver"])
-    r.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
   return r;
 }
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping"});
+                      "stopping", "linear_solver"});
   SweepRequest r;
+  read_problem_spec(f, limits, Dimension::grid, r.problem);
+  read_solver_options(f, limits, r.solver);
   const std::size_t max_axis = std::min<std::size_t>(limits.max_grid_cells, 100000);
-  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
   if (auto x = f["methods"]) {
     r.methods.clear();
     for (const auto& m : read_array(*x, "methods", 1, 16, "method names"))
       r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
   }
-  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
   if (auto x = f["n"]) {
     for (const auto& v : read_array(*x, "n", 1, max_axis, "integers")) r.n.push_back(read_int(v, "n", 2, limits.max_n));
   }
   if (auto x = f["h"]) {
     for (const auto& v : read_array(*x, "h", 1, max_axis, "step sizes")) r.h.push_back(read_h(v, "h"));
   }
-  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
-  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
-  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
-  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
-  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
   // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
@@ -273,22 +281,14 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
-                      "seed", "z", "frames", "rigid_body", "stopping"});
+                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver"});
   IntegrateRequest r;
-  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
-  r.n = read_n(f, limits, r.n);
+  read_problem_spec(f, limits, Dimension::single, r.problem);
+  read_solver_options(f, limits, r.solver);
   if (auto x = f["h"]) r.h = read_h(*x, "h");
   if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
   if (auto x = f["integrator"]) r.integrator = read_enum(*x, "integrator", integrator_from_string, kAllIntegrators);
-  if (auto x = f["method"]) r.method = read_enum(*x, "method", method_from_string, kAllMethods);
-  if (auto x = f["differential"]) r.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
-  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
-  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
-  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
-  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
-  if (auto x = f["z"]) r.z = read_matrix(*x, "z", r.n);
   if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
-  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
   if (r.t_end / r.h > limits.max_steps) {
     fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
   }
@@ -297,10 +297,10 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping"});
+                      "stopping", "linear_solver"});
   WorkPrecisionRequest r;
-  if (auto x = f["problem"]) r.problem = read_enum(*x, "problem", problem_from_string, kAllProblems);
-  if (auto x = f["n"]) r.n = read_int(*x, "n", 2, limits.max_n);
+  read_problem_spec(f, limits, Dimension::single, r.problem);
+  read_solver_options(f, limits, r.solver);
   if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
   if (auto x = f["choices"]) {
     const auto& arr = read_array(*x, "choices", 1, 64, "choice objects");
@@ -317,11 +317,6 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
   if (auto x = f["h"]) {
     for (const auto& v : read_array(*x, "h", 1, 64, "step sizes")) r.h.push_back(read_h(v, "h"));
   }
-  if (auto x = f["tol"]) r.tol = read_tol(*x, "tol");
-  if (auto x = f["max_iterations"]) r.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
-  if (auto x = f["stopping"]) r.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
-  if (auto x = f["seed"]) r.seed = read_u64(*x, "seed");
-  if (auto x = f["rigid_body"]) r.rigid_body = read_rigid_body(*x, "rigid_body");
   // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.
   std::vector<double> hs = r.h;
   if (hs.empty()) for (int k = 2; k <= 7; ++k) hs.push_back(std::ldexp(1.0, -k));

@@ -56,6 +56,8 @@ json schemas() {
   const json max_iterations = json{{"type", "integer"}, {"minimum", 1}, {"default", 100}, {"description", "capped by --max-iterations"}};
   const json seed = json{{"type", "integer"}, {"minimum", 0}, {"maximum", 18446744073709551615.0}, {"default", 1}, {"description", "unsigned 64-bit seed of the random start point"}};
   const json t_end = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", validation::kMaxTEnd}, {"description", "end time"}};
+  const json linear_solver = json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}}, {"default", "auto"},
+                                  {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}};
   const json width = json{{"type", "integer"}, {"minimum", 64}, {"maximum", 4096}};
   const json rigid_body = object({{"inertia", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "principal moments (positive)"}}},
                                   {"momentum", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "spatial angular momentum"}}}});
@@ -65,11 +67,7 @@ json schemas() {
                               {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
                               {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")},
-                              {"linear_solver", json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}},
-                                                     {"default", "auto"},
-                                                     {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}}},
-                              {"stopping", stopping}});
+                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -101,7 +99,7 @@ json schemas() {
   s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
-                              {"stopping", stopping}});
+                              {"linear_solver", linear_solver}, {"stopping", stopping}});
   s["SweepCell"] = object({{"method", method}, {"n", integer("N")}, {"h", number("step size")}, {"status", status},
                            {"reason", json{{"type", "string"}}}, {"iterations", integer("")},
                            {"rate", nullable_number("")}, {"residual", nullable_number("")}},
@@ -111,7 +109,7 @@ json schemas() {
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
-                                  {"rigid_body", ref("RigidBody")}, {"stopping", stopping}});
+                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -127,7 +125,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"rigid_body", ref("RigidBody")}, {"stopping", stopping}});
+                                      {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

@@ -23,15 +23,16 @@ void refuse_beyond(double values, const OutputLimits& limits, const char* field,
 }  // namespace
 
 void check_output(const SolveRequest& r, const OutputLimits& limits) {
-  if (!r.include_iterates) return;
-  const double values = (r.max_iterations + 1.0) * r.n * r.n;
+  if (!r.solver.include_iterates) return;
+  const int n = r.problem.n, max_iterations = r.solver.max_iterations;
+  const double values = (max_iterations + 1.0) * n * n;
   refuse_beyond(values, limits, "include_iterates", "include_iterates with max_iterations " +
-                                                         std::to_string(r.max_iterations) + " and n " + std::to_string(r.n));
+                                                         std::to_string(max_iterations) + " and n " + std::to_string(n));
 }
 
 void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
   const double steps = std::ceil(r.t_end / r.h);
-  const double values = steps * kStepValues + (r.frames + 1.0) * r.n * r.n;
+  const double values = steps * kStepValues + (r.frames + 1.0) * r.problem.n * r.problem.n;
   refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");
 }
 

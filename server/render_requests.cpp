@@ -132,8 +132,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   Eigen::Matrix3d start;
   if (kind == "solve") {
     SolveRequest r = solve_request_from_json(request, limits);
-    if (r.n != 3) not_so3("n must be 3");
-    r.include_iterates = true;
+    if (r.problem.n != 3) not_so3("n must be 3");
+    r.solver.include_iterates = true;
     validate(r);
     before_work(hooks);
     SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
@@ -143,13 +143,13 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
       if (t.y.rows() == 3 && t.y.cols() == 3) frames.emplace_back(t.y);
     }
     if (frames.empty()) frames.emplace_back(result.y);
-    start = r.z ? Eigen::Matrix3d(*r.z) : frames.front();
+    start = r.problem.z ? Eigen::Matrix3d(*r.problem.z) : frames.front();
     return renderer.frames_png(frames, start, options);
   }
   if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
   if (!request.contains("frames")) request["frames"] = 16;
   IntegrateRequest r = integrate_request_from_json(request, limits);
-  if (r.n != 3) not_so3("n must be 3");
+  if (r.problem.n != 3) not_so3("n must be 3");
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   r.reference = false;  // the picture needs no global error
   validate(r);
@@ -213,8 +213,8 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped) throw RenderCancelled{};
-  const std::string title = "Work-precision: " + std::string(to_string(r.problem)) + " on " + group_name(r.n) +
-                            ", t_end = " + number_text(r.t_end);
+  const std::string title = "Work-precision: " + std::string(to_string(r.problem.kind)) + " on " +
+                            group_name(r.problem.n) + ", t_end = " + number_text(r.t_end);
   return draw_figure(renderer, [&] { return render::work_precision_scene(result, title, width, height); });
 }
 
@@ -241,8 +241,8 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
       // Fixed point (1.2) forms no differential: one run, whatever differentials lists.
       if (m == Method::fixed_point && d != differentials.front()) continue;
       SolveRequest r = base;
-      r.method = m;
-      r.differential = d;
+      r.solver.method = m;
+      r.solver.differential = d;
       const SolveResult result = solve(r, [&](const TraceRecord&) { return keep_going(hooks, index++); });
       if (hooks.on_solve) hooks.on_solve(result);
       if (result.status == Status::cancelled) throw RenderCancelled{};
@@ -254,8 +254,8 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
       runs.push_back(std::move(run));
     }
   }
-  const std::string title = "||f(y_n)|| against solver CPU time: " + std::string(to_string(base.problem)) + " on " +
-                            group_name(base.n) + ", h = " + number_text(base.h);
+  const std::string title = "||f(y_n)|| against solver CPU time: " + std::string(to_string(base.problem.kind)) + " on " +
+                            group_name(base.problem.n) + ", h = " + number_text(base.h);
   return draw_figure(renderer, [&] { return render::residuals_scene(runs, title, width, height); });
 }
 

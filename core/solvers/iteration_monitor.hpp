@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/options.hpp"
+#include "core/solver_options.hpp"
 #include "solve_result.hpp"
 
 namespace lienewton {
@@ -18,15 +18,6 @@ namespace lienewton {
 inline constexpr double kDivergenceBound = 1e8;
 // Reciprocal condition number below which the Newton system is reported singular instead of solved.
 inline constexpr double kSingularRcond = 1e-14;
-
-struct SolverOptions {
-  double tol = 1e-13;
-  int max_iterations = 100;
-  bool include_iterates = false;
-  Differential differential = Differential::exact;
-  LinearSolver linear_solver = LinearSolver::auto_select;
-  Stopping stopping = Stopping::residual;
-};
 
 // What the monitor is told about iterate n besides its trace record.
 struct Measurement {

@@ -56,7 +56,7 @@ int run(const std::string& command, const std::string& sub) {
   json out;
   if (command == "solve") {
     const SolveRequest r = solve_request_from_json(body, limits);
-    out = to_json(solve(r), r.include_iterates);
+    out = to_json(solve(r), r.solver.include_iterates);
   } else if (command == "sweep") {
     out = to_json(sweep(sweep_request_from_json(body, limits)));
   } else if (command == "integrate") {
@@ -78,8 +78,8 @@ int figures(const std::string& differential_name) {
   if (!differential) return fail(2, "invalid_field", "differential", "unknown differential " + differential_name);
   for (ProblemKind problem : {ProblemKind::paper_linear, ProblemKind::paper_sine}) {
     SweepRequest req;
-    req.problem = problem;
-    req.differential = *differential;
+    req.problem.kind = problem;
+    req.solver.differential = *differential;
     const SweepResult result = sweep(req);
     std::cout << "## " << to_string(problem) << " (" << result.cells.size() << " cells in " << result.seconds
               << " s)\n\n"

@@ -64,13 +64,13 @@ TEST(Krylov, MatrixFreeNewtonAgreesWithDenseAndStaysQuadratic) {
   for (Method m : {Method::newton_group, Method::newton_algebra}) {
     for (Differential d : {Differential::exact, Differential::finite_difference}) {
       SolveRequest req;
-      req.n = 12;
+      req.problem.n = 12;
       req.h = 0.25;
-      req.method = m;
-      req.differential = d;
-      req.linear_solver = LinearSolver::lu;
+      req.solver.method = m;
+      req.solver.differential = d;
+      req.solver.linear_solver = LinearSolver::lu;
       const SolveResult dense = solve(req);
-      req.linear_solver = LinearSolver::gmres;
+      req.solver.linear_solver = LinearSolver::gmres;
       const SolveResult krylov = solve(req);
       ASSERT_EQ(krylov.status, Status::converged) << krylov.reason;
       EXPECT_EQ(krylov.linear_solver, "gmres");
@@ -85,11 +85,11 @@ TEST(Krylov, MatrixFreeNewtonAgreesWithDenseAndStaysQuadratic) {
 
 TEST(Krylov, ChosenAutomaticallyAboveTheThreshold) {
   SolveRequest req;
-  req.n = kKrylovThreshold + 1;
+  req.problem.n = kKrylovThreshold + 1;
   req.h = 0.25;
-  req.max_iterations = 1;
+  req.solver.max_iterations = 1;
   EXPECT_EQ(solve(req).linear_solver, "gmres");
-  req.n = kKrylovThreshold;
+  req.problem.n = kKrylovThreshold;
   EXPECT_EQ(solve(req).linear_solver, "lu");
 }
 

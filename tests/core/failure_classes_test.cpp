@@ -34,9 +34,9 @@ void expect_reason(const SolveResult& r, Status status) {
 
 TEST(FailureClasses, ConvergedAndMaxIterations) {
   SolveRequest req;
-  req.method = Method::fixed_point;
+  req.solver.method = Method::fixed_point;
   expect_reason(solve(req), Status::converged);
-  req.max_iterations = 3;
+  req.solver.max_iterations = 3;
   const SolveResult r = solve(req);
   expect_reason(r, Status::max_iterations);
   EXPECT_NE(r.reason.find("3 iterations"), std::string::npos);
@@ -50,7 +50,7 @@ TEST(FailureClasses, DivergedOnClassicNewtonCounterexample) {
       [](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
         return Eigen::VectorXd(u.array() / (1.0 + x.array().square()));
       });
-  expect_reason(newton_group(eq, {1e-13, 100, false, Differential::exact}), Status::diverged);
+  expect_reason(newton_group(eq, {.tol = 1e-13, .max_iterations = 100}), Status::diverged);
 }
 
 TEST(FailureClasses, NonFiniteWhenFLeavesItsDomain) {
@@ -59,7 +59,7 @@ TEST(FailureClasses, NonFiniteWhenFLeavesItsDomain) {
   const auto eq = Equation<RnGroup>::general(
       r1, Eigen::VectorXd::Constant(1, 1.0), [](const Eigen::VectorXd& x) { return Eigen::VectorXd(x.array().sqrt() + 1.0); },
       [](const Eigen::VectorXd& x, const Eigen::VectorXd& u) { return Eigen::VectorXd(u.array() / (2.0 * x.array().sqrt())); });
-  const SolveResult r = newton_group(eq, {1e-13, 100, false, Differential::exact});
+  const SolveResult r = newton_group(eq, {.tol = 1e-13, .max_iterations = 100});
   expect_reason(r, Status::non_finite);
   EXPECT_EQ(r.y(0), -3.0);  // x1 = 1 - f/f' = 1 - 2 / (1/2)
   EXPECT_EQ(r.trace.size(), 2u);
@@ -70,7 +70,7 @@ TEST(FailureClasses, SingularDifferential) {
   const auto eq = Equation<RnGroup>::general(
       r1, Eigen::VectorXd::Zero(1), [](const Eigen::VectorXd& x) { return Eigen::VectorXd(x.array().square() + 1.0); },
       [](const Eigen::VectorXd& x, const Eigen::VectorXd& u) { return Eigen::VectorXd(2.0 * x.array() * u.array()); });
-  expect_reason(newton_group(eq, {1e-13, 100, false, Differential::exact}), Status::singular_differential);
+  expect_reason(newton_group(eq, {.tol = 1e-13, .max_iterations = 100}), Status::singular_differential);
 }
 
 TEST(FailureClasses, LeftLogDomainWhenTheSolutionIsAtPi) {
@@ -78,7 +78,7 @@ TEST(FailureClasses, LeftLogDomainWhenTheSolutionIsAtPi) {
   const ConstantField field(Eigen::Vector3d(0.0, std::numbers::pi, 0.0));
   const Eigen::Matrix3d z = start_point(3, 1);
   const auto eq = Equation<SO3Group>::implicit_euler(SO3Group{}, z, 1.0, field);
-  const SolveResult r = newton_group(eq, {1e-13, 100, false, Differential::exact});
+  const SolveResult r = newton_group(eq, {.tol = 1e-13, .max_iterations = 100});
   expect_reason(r, Status::left_log_domain);
   EXPECT_NE(r.reason.find("iterate 1 has rotation angle 3.14159"), std::string::npos) << r.reason;
   // f is undefined at the iterate that reached pi, so the answer is the last iterate inside log's domain,
@@ -95,25 +95,25 @@ TEST(FailureClasses, OffBranchWhenHgTurnsBeyondPi) {
   const ConstantField field(Eigen::Vector3d(0.0, 0.0, 4.0));
   const Eigen::Matrix3d z = start_point(3, 2);
   const auto eq = Equation<SO3Group>::implicit_euler(SO3Group{}, z, 1.0, field);
-  const SolveResult fp = fixed_point(eq, {1e-13, 100, false, Differential::exact});
+  const SolveResult fp = fixed_point(eq, {.tol = 1e-13, .max_iterations = 100});
   expect_reason(fp, Status::off_branch);
   EXPECT_LT((fp.y - z * so3::exp(Eigen::Vector3d(0, 0, 4.0))).norm(), 1e-14);
   EXPECT_NEAR(fp.residual, 2.0 * std::numbers::pi, 1e-12);
   // Version 2 never takes a log: it converges to v = h w and is flagged for the same reason.
-  expect_reason(newton_algebra(eq, {1e-13, 100, false, Differential::exact}), Status::off_branch);
+  expect_reason(newton_algebra(eq, {.tol = 1e-13, .max_iterations = 100}), Status::off_branch);
 }
 
 TEST(FailureClasses, StagnatedAtTheRoundingFloorForLargeH) {
   // The floor ~ h eps ||g|| sqrt(q) is above tol = 1e-16: Newton reaches it in a few steps and stops decreasing.
   SolveRequest req;
-  req.n = 6;
+  req.problem.n = 6;
   req.h = 2.0;
-  req.tol = 1e-16;
-  req.method = Method::newton_group;
-  req.differential = Differential::exact;
+  req.solver.tol = 1e-16;
+  req.solver.method = Method::newton_group;
+  req.solver.differential = Differential::exact;
   const SolveResult r = solve(req);
   expect_reason(r, Status::stagnated);
-  EXPECT_GT(r.residual, req.tol);
+  EXPECT_GT(r.residual, req.solver.tol);
   EXPECT_LT(r.residual, 1e-14);
   EXPECT_LT(r.iterations, 15);
   EXPECT_NE(r.reason.find("floor"), std::string::npos);
@@ -121,7 +121,7 @@ TEST(FailureClasses, StagnatedAtTheRoundingFloorForLargeH) {
 
 TEST(FailureClasses, CancelledByTheCallback) {
   SolveRequest req;
-  req.method = Method::fixed_point;
+  req.solver.method = Method::fixed_point;
   int calls = 0;
   const SolveResult r = solve(req, [&](const TraceRecord&) { return ++calls < 3; });
   expect_reason(r, Status::cancelled);
@@ -146,27 +146,27 @@ TEST(Validation, NamesTheOffendingField) {
   bad.h = std::nan("");
   EXPECT_EQ(field_of(bad), "h:400");
   bad = ok;
-  bad.n = 1;
+  bad.problem.n = 1;
   EXPECT_EQ(field_of(bad), "n:400");
   bad = ok;
-  bad.problem = ProblemKind::rigid_body;
-  bad.n = 4;
+  bad.problem.kind = ProblemKind::rigid_body;
+  bad.problem.n = 4;
   EXPECT_EQ(field_of(bad), "n:422");
   bad = ok;
-  bad.z = Eigen::MatrixXd::Constant(3, 3, 1.0);
+  bad.problem.z = Eigen::MatrixXd::Constant(3, 3, 1.0);
   EXPECT_EQ(field_of(bad), "z:422");
   bad = ok;
-  bad.z = Eigen::MatrixXd::Identity(2, 2);
+  bad.problem.z = Eigen::MatrixXd::Identity(2, 2);
   EXPECT_EQ(field_of(bad), "z:400");
   bad = ok;
-  bad.tol = 0;
+  bad.solver.tol = 0;
   EXPECT_EQ(field_of(bad), "tol:400");
   bad = ok;
-  bad.max_iterations = 0;
+  bad.solver.max_iterations = 0;
   EXPECT_EQ(field_of(bad), "max_iterations:400");
   // det -1 start points are allowed, as in the paper (O(N)): iterates stay in z SO(N).
   SolveRequest reflect = ok;
-  reflect.z = Eigen::Vector3d(1, 1, -1).asDiagonal().toDenseMatrix();
+  reflect.problem.z = Eigen::Vector3d(1, 1, -1).asDiagonal().toDenseMatrix();
   EXPECT_EQ(field_of(reflect), "accepted");
   EXPECT_EQ(solve(reflect).status, Status::converged);
 }

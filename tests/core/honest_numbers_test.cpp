@@ -57,11 +57,11 @@ Oracle oracle(ProblemKind problem, double h, const MatrixXd& z, const MatrixXd& 
 
 SolveResult solve_json_like(ProblemKind problem, int n, double h, Method method, Differential d) {
   SolveRequest req;
-  req.problem = problem;
-  req.n = n;
+  req.problem.kind = problem;
+  req.problem.n = n;
   req.h = h;
-  req.method = method;
-  req.differential = d;
+  req.solver.method = method;
+  req.solver.differential = d;
   return solve(req);
 }
 
@@ -137,10 +137,10 @@ TEST(HonestNumbers, NearlyOrthogonalZIsReplacedByItsPolarFactor) {
   const MatrixXd polar = svd.matrixU() * svd.matrixV().transpose();
   for (Method m : kAllMethods) {
     SolveRequest req;
-    req.n = 5;
+    req.problem.n = 5;
     req.h = 0.5;
-    req.method = m;
-    req.z = z;
+    req.solver.method = m;
+    req.problem.z = z;
     const SolveResult r = solve(req);
     EXPECT_EQ(r.status, Status::converged) << to_string(m) << ": " << r.reason;
     EXPECT_NEAR(r.z_adjustment, (z - polar).norm(), 1e-14);
@@ -186,11 +186,11 @@ TEST(HonestNumbers, OrthogonalityAndDivergenceReason) {
 // run whose v left log's branch is off_branch.
 TEST(HonestNumbers, AlgebraResidualStopping) {
   SolveRequest req;
-  req.n = 3;
+  req.problem.n = 3;
   req.h = 1024;
-  req.method = Method::newton_algebra;
-  req.stopping = Stopping::algebra_residual;
-  req.tol = 1e-10;
+  req.solver.method = Method::newton_algebra;
+  req.solver.stopping = Stopping::algebra_residual;
+  req.solver.tol = 1e-10;
   const SolveResult r = solve(req);
   EXPECT_EQ(r.status, Status::off_branch) << r.reason;
   ASSERT_TRUE(r.algebra_residual.has_value());
@@ -210,31 +210,31 @@ TEST(HonestNumbers, RandomLargeHAgreeWithTheOracle) {
   constexpr int kCases = 300;
   for (int c = 0; c < kCases; ++c) {
     SolveRequest req;
-    req.problem = p_of(rng) ? ProblemKind::paper_sine : ProblemKind::paper_linear;
-    req.n = n_of(rng);
+    req.problem.kind = p_of(rng) ? ProblemKind::paper_sine : ProblemKind::paper_linear;
+    req.problem.n = n_of(rng);
     req.h = std::ldexp(1.0 + 0.5 * normal(rng) * 0.1, k_of(rng));
-    req.method = kAllMethods[m_of(rng)];
-    req.differential = kAllDifferentials[d_of(rng)];
-    MatrixXd z = start_point(req.n, rng());
+    req.solver.method = kAllMethods[m_of(rng)];
+    req.solver.differential = kAllDifferentials[d_of(rng)];
+    MatrixXd z = start_point(req.problem.n, rng());
     for (Eigen::Index i = 0; i < z.size(); ++i) z(i) += 1e-13 * normal(rng);
-    req.z = z;
+    req.problem.z = z;
     const SolveResult r = solve(req);
     const Eigen::JacobiSVD<MatrixXd> svd(z, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const MatrixXd polar = svd.matrixU() * svd.matrixV().transpose();
-    const Oracle o = oracle(req.problem, req.h, polar, r.y);
-    const double q = req.n * (req.n - 1) / 2.0;
+    const Oracle o = oracle(req.problem.kind, req.h, polar, r.y);
+    const double q = req.problem.n * (req.problem.n - 1) / 2.0;
     const double loose = 1e-12 * (1.0 + req.h);
     bool ok = !std::isfinite(o.residual) || std::abs(r.residual - o.residual) <= 1e-8 * (1.0 + o.residual);
     switch (r.status) {
-      case Status::converged: ok = ok && o.residual <= req.tol + r.floor; break;  // the oracle rounds too
+      case Status::converged: ok = ok && o.residual <= req.solver.tol + r.floor; break;  // the oracle rounds too
       case Status::off_branch: ok = ok && o.defect <= loose && o.angle > std::numbers::pi; break;
       case Status::stagnated: ok = ok && o.residual <= 1e4 * kEps * std::sqrt(q) * (1.0 + req.h * 100); break;
       default: ok = ok && !(o.defect <= 1e-3 * loose && o.angle > std::numbers::pi + 1e-6); break;
     }
     if (ok) ++agree;
     else
-      ADD_FAILURE() << to_string(req.problem) << " n=" << req.n << " h=" << req.h << " " << to_string(req.method)
-                    << " " << to_string(req.differential) << ": " << r.reason << " | oracle f=" << o.residual
+      ADD_FAILURE() << to_string(req.problem.kind) << " n=" << req.problem.n << " h=" << req.h << " "
+                    << to_string(req.solver.method) << " " << to_string(req.solver.differential) << ": " << r.reason << " | oracle f=" << o.residual
                     << " defect=" << o.defect << " angle=" << o.angle;
   }
   std::printf("oracle agreement: %d/%d\n", agree, kCases);

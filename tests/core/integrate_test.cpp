@@ -15,8 +15,8 @@ double observed_order(Integrator integrator, ProblemKind problem, int n, const s
   std::vector<double> errors;
   for (double h : hs) {
     IntegrateRequest req;
-    req.problem = problem;
-    req.n = n;
+    req.problem.kind = problem;
+    req.problem.n = n;
     req.h = h;
     req.t_end = 1.0;
     req.integrator = integrator;
@@ -46,7 +46,7 @@ TEST(Integrators, RigidBodyStaysOnSO3Over10kSteps) {
       req.h = 1e-3;
       req.t_end = 10.0;
       req.integrator = integrator;
-      req.method = method;
+      req.solver.method = method;
       req.reference = false;
       const IntegrateResult r = integrate(req);
       ASSERT_EQ(r.status, Status::converged) << r.reason;
@@ -76,7 +76,7 @@ TEST(Integrators, FramesAndStepRecords) {
   EXPECT_TRUE(r.frames.back().isApprox(r.y, 0.0));
   for (const auto& s : r.steps) {
     EXPECT_GE(s.iterations, 1);
-    EXPECT_LE(s.residual, req.tol);
+    EXPECT_LE(s.residual, req.solver.tol);
   }
 }
 

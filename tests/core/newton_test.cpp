@@ -15,13 +15,8 @@ namespace lienewton {
 namespace {
 
 SolveRequest paper_linear(int n, Method m, Differential d) {
-  SolveRequest r;
-  r.problem = ProblemKind::paper_linear;
-  r.n = n;
-  r.h = 0.5;
-  r.method = m;
-  r.differential = d;
-  return r;
+  return SolveRequest{.problem = {.kind = ProblemKind::paper_linear, .n = n},
+                      .solver = {.method = m, .differential = d}, .h = 0.5};
 }
 
 class QuadraticConvergence
@@ -54,7 +49,7 @@ TEST(FixedPoint, ConvergesLinearlyOnPaperLinear) {
 
 TEST(Solve, TraceHasOneRecordPerIterateAndIterationsIsTheConvergedIndex) {
   SolveRequest req = paper_linear(5, Method::newton_group, Differential::exact);
-  req.include_iterates = true;
+  req.solver.include_iterates = true;
   const SolveResult r = solve(req);
   ASSERT_EQ(r.status, Status::converged);
   ASSERT_EQ(static_cast<int>(r.trace.size()), r.iterations + 1);
@@ -62,15 +57,15 @@ TEST(Solve, TraceHasOneRecordPerIterateAndIterationsIsTheConvergedIndex) {
     EXPECT_EQ(r.trace[i].iteration, i);
     EXPECT_EQ(r.trace[i].y.rows(), 5);
   }
-  EXPECT_GT(r.trace[r.iterations - 1].residual, req.tol);  // converged at the first n below tol
-  EXPECT_LE(r.trace.back().residual, req.tol);
+  EXPECT_GT(r.trace[r.iterations - 1].residual, req.solver.tol);  // converged at the first n below tol
+  EXPECT_LE(r.trace.back().residual, req.solver.tol);
   // step n is |u_{n-1}|, and y_n = y_{n-1} exp(u_{n-1}) (3.5)
   EXPECT_EQ(r.trace[0].step, 0.0);
   for (int i = 1; i <= r.iterations; ++i) {
     const Eigen::MatrixXd rel = r.trace[i - 1].y.transpose() * r.trace[i].y;
     EXPECT_NEAR(son::vee(son::log(rel)).norm(), r.trace[i].step, 1e-13) << "n = " << i;
   }
-  EXPECT_TRUE(r.trace[0].y.isApprox(start_point(5, req.seed), 0.0));  // y_0 = z
+  EXPECT_TRUE(r.trace[0].y.isApprox(start_point(5, req.problem.seed), 0.0));  // y_0 = z
   EXPECT_LT(r.orthogonality_error, 1e-13);
 }
 
@@ -97,9 +92,9 @@ TEST(Solve, SolverCpuTimeGrowsAlongTheTraceAndExcludesTheCallback) {
 TEST(Solve, LastAllowedIterateIsStillTested) {
   SolveRequest req = paper_linear(4, Method::newton_group, Differential::exact);
   const int needed = solve(req).iterations;
-  req.max_iterations = needed;
+  req.solver.max_iterations = needed;
   EXPECT_EQ(solve(req).status, Status::converged);
-  req.max_iterations = needed - 1;
+  req.solver.max_iterations = needed - 1;
   const SolveResult r = solve(req);
   EXPECT_EQ(r.status, Status::max_iterations);
   EXPECT_EQ(r.iterations, needed - 1);
@@ -109,13 +104,13 @@ TEST(Solve, ClosedFormAndSpectralPathsAgreeAtN3) {
   for (Method m : kAllMethods) {
     for (ProblemKind p : kAllProblems) {
       SolveRequest req = paper_linear(3, m, Differential::exact);
-      req.problem = p;
-      const Eigen::MatrixXd z = start_point(3, req.seed);
+      req.problem.kind = p;
+      const Eigen::MatrixXd z = start_point(3, req.problem.seed);
       const SolveResult closed = solve(req);
       const SONGroup son(3);
-      const auto field = make_field(son, p, req.rigid_body);
+      const auto field = make_field(son, p, req.problem.rigid_body);
       const auto eq = Equation<SONGroup>::implicit_euler(son, z, req.h, *field);
-      const SolveResult spectral = run_method(m, eq, {req.tol, req.max_iterations, false, req.differential}, {});
+      const SolveResult spectral = run_method(m, eq, req.solver, {});
       EXPECT_EQ(closed.status, spectral.status) << to_string(m) << " " << to_string(p);
       if (closed.status != Status::converged) continue;  // e.g. fixed point on paper-sine: chaotic, not comparable
       EXPECT_EQ(closed.iterations, spectral.iterations) << to_string(m) << " " << to_string(p);
@@ -138,7 +133,7 @@ TEST(AbelianReduction, BothVersionsAreClassicalNewtonOnRn) {  // Corollary 3.3
   const auto eq = Equation<RnGroup>::general(rn, z, f_rn, [](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
     return Eigen::VectorXd(jacobian_rn(x) * u);
   });
-  const SolverOptions opt{1e-13, 50, true, Differential::exact};
+  const SolverOptions opt{.tol = 1e-13, .max_iterations = 50, .include_iterates = true};
   const SolveResult v1 = newton_group(eq, opt);
   const SolveResult v2 = newton_algebra(eq, opt);
   ASSERT_EQ(v1.status, Status::converged);
@@ -159,7 +154,7 @@ TEST(AbelianReduction, HomomorphismConvergesInOneStep) {  // Remark 3.1
   const auto eq = Equation<RnGroup>::general(
       rn, Eigen::Vector3d(1, -2, 3), [a](const Eigen::VectorXd& x) { return Eigen::VectorXd(a * x); },
       [a](const Eigen::VectorXd&, const Eigen::VectorXd& u) { return Eigen::VectorXd(a * u); });
-  const SolveResult r = newton_group(eq, {1e-13, 10, false, Differential::exact});
+  const SolveResult r = newton_group(eq, {.tol = 1e-13, .max_iterations = 10});
   EXPECT_EQ(r.status, Status::converged);
   EXPECT_EQ(r.iterations, 1);
 
@@ -168,7 +163,7 @@ TEST(AbelianReduction, HomomorphismConvergesInOneStep) {  // Remark 3.1
   const Eigen::Matrix2d y0 = so2.exp(Eigen::VectorXd::Constant(1, 2.5));
   const auto eq2 = Equation<SONGroup>::general(
       so2, y0, [&](const Eigen::MatrixXd& y) { return Eigen::VectorXd(3.0 * so2.vee(son::log(y))); });
-  const SolveResult r2 = newton_group(eq2, {1e-13, 10, false, Differential::finite_difference});
+  const SolveResult r2 = newton_group(eq2, {.differential = Differential::finite_difference, .tol = 1e-13, .max_iterations = 10});
   EXPECT_EQ(r2.status, Status::converged);
   EXPECT_EQ(r2.iterations, 1);
 }
@@ -181,7 +176,7 @@ TEST(Theorem32, VersionTwoLinearisesVersionOne) {
   const double h = 0.5;
   const auto field = make_field(g, ProblemKind::paper_sine, RigidBodyParams{});
   const auto eq = Equation<SONGroup>::implicit_euler(g, z, h, *field);
-  const SolveResult sol = newton_algebra(eq, {1e-14, 50, false, Differential::exact});
+  const SolveResult sol = newton_algebra(eq, {.tol = 1e-14, .max_iterations = 50});
   ASSERT_EQ(sol.status, Status::converged);
   const Eigen::VectorXd v_star = g.vee(son::log(z.transpose() * sol.y));
   const Eigen::VectorXd dir = Eigen::VectorXd::LinSpaced(g.dim(), -1.0, 1.0).normalized();

@@ -15,8 +15,8 @@ const SweepResult& default_sweep(ProblemKind problem) {
   auto it = cache.find(problem);
   if (it == cache.end()) {
     SweepRequest req;
-    req.problem = problem;
-    req.differential = Differential::exact;
+    req.problem.kind = problem;
+    req.solver.differential = Differential::exact;
     it = cache.emplace(problem, sweep(req)).first;
   }
   return it->second;
@@ -80,8 +80,8 @@ INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::pa
 
 TEST(Sweep, ResultDoesNotDependOnThreadCount) {
   SweepRequest req;
-  req.problem = ProblemKind::paper_sine;
-  req.differential = Differential::finite_difference;
+  req.problem.kind = ProblemKind::paper_sine;
+  req.solver.differential = Differential::finite_difference;
   req.n = {2, 5, 9};
   req.h = {0.125, 2.0, 64.0};
   req.threads = 1;

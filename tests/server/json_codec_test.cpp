@@ -37,16 +37,16 @@ TEST(JsonCodec, ParsesAFullSolveRequest) {
       parse_body(R"({"problem":"paper-sine","n":4,"h":0.25,"method":"newton-algebra","differential":"dexpinv-1",
                      "tol":1e-12,"max_iterations":50,"seed":18446744073709551615,"include_iterates":true})"),
       Limits{});
-  EXPECT_EQ(r.problem, ProblemKind::paper_sine);
-  EXPECT_EQ(r.n, 4);
+  EXPECT_EQ(r.problem.kind, ProblemKind::paper_sine);
+  EXPECT_EQ(r.problem.n, 4);
   EXPECT_EQ(r.h, 0.25);
-  EXPECT_EQ(r.method, Method::newton_algebra);
-  EXPECT_EQ(r.differential, Differential::dexpinv_1);
-  EXPECT_EQ(r.tol, 1e-12);
-  EXPECT_EQ(r.max_iterations, 50);
-  EXPECT_EQ(r.seed, std::numeric_limits<std::uint64_t>::max());
-  EXPECT_TRUE(r.include_iterates);
-  EXPECT_FALSE(r.z.has_value());
+  EXPECT_EQ(r.solver.method, Method::newton_algebra);
+  EXPECT_EQ(r.solver.differential, Differential::dexpinv_1);
+  EXPECT_EQ(r.solver.tol, 1e-12);
+  EXPECT_EQ(r.solver.max_iterations, 50);
+  EXPECT_EQ(r.problem.seed, std::numeric_limits<std::uint64_t>::max());
+  EXPECT_TRUE(r.solver.include_iterates);
+  EXPECT_FALSE(r.problem.z.has_value());
 }
 
 TEST(JsonCodec, NamesEachInvalidSolveField) {
@@ -109,15 +109,15 @@ TEST(JsonCodec, RejectsUnknownDuplicateAndMalformed) {
 
 TEST(JsonCodec, NullMeansAbsentAndZGivesN) {
   const auto r = solve_request_from_json(parse_body(R"({"n":null,"z":[[0,1],[1,0]]})"), Limits{});
-  EXPECT_EQ(r.n, 2);
-  ASSERT_TRUE(r.z.has_value());
-  EXPECT_EQ((*r.z)(0, 1), 1.0);
+  EXPECT_EQ(r.problem.n, 2);
+  ASSERT_TRUE(r.problem.z.has_value());
+  EXPECT_EQ((*r.problem.z)(0, 1), 1.0);
 }
 
 TEST(JsonCodec, CliLimitsAcceptAnyN) {
   const auto r = solve_request_from_json(parse_body(R"({"n":500,"max_iterations":100000})"), Limits::unlimited());
-  EXPECT_EQ(r.n, 500);
-  EXPECT_EQ(r.max_iterations, 100000);
+  EXPECT_EQ(r.problem.n, 500);
+  EXPECT_EQ(r.solver.max_iterations, 100000);
 }
 
 TEST(JsonCodec, SweepFieldsAndGridCap) {
@@ -148,11 +148,16 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(r.integrator, Integrator::dirk_cg2);
   EXPECT_EQ(r.t_end, 2);
   EXPECT_EQ(r.frames, 5);
+  // The solver options are the solve's, linear_solver included.
+  const auto gmres = integrate_request_from_json(parse_body(R"({"linear_solver":"gmres","tol":1e-10})"), Limits{});
+  EXPECT_EQ(gmres.solver.linear_solver, LinearSolver::gmres);
+  EXPECT_EQ(gmres.solver.tol, 1e-10);
   auto integrate_failure = [](const std::string& text) {
     return failure_of([&] { integrate_request_from_json(parse_body(text), Limits{}); });
   };
   EXPECT_EQ(integrate_failure(R"({"t_end":0})").field, "t_end");
   EXPECT_EQ(integrate_failure(R"({"integrator":"rk4"})").field, "integrator");
+  EXPECT_EQ(integrate_failure(R"({"linear_solver":"qr"})").field, "linear_solver");
   EXPECT_EQ(integrate_failure(R"({"frames":-1})").field, "frames");
   EXPECT_EQ(integrate_failure(R"({"h":1e-6,"t_end":100})").field, "h");  // 1e8 steps
   EXPECT_EQ(integrate_failure(R"({"t_end":1000})").field, "t_end");  // beyond the core's 100
@@ -172,13 +177,13 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
 // Every request that runs solves takes the stopping rule (issue 11); a bad value is a 400/422 naming the field.
 TEST(JsonCodec, StoppingRuleOnEveryRequest) {
   const json algebra = parse_body(R"({"stopping":"algebra-residual"})");
-  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).stopping, Stopping::residual);
-  EXPECT_EQ(solve_request_from_json(parse_body(R"({"stopping":"residual"})"), Limits{}).stopping, Stopping::residual);
-  EXPECT_EQ(solve_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
-  EXPECT_EQ(sweep_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
-  EXPECT_EQ(integrate_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
-  EXPECT_EQ(work_precision_request_from_json(algebra, Limits{}).stopping, Stopping::algebra_residual);
-  EXPECT_EQ(work_precision_request_from_json(parse_body("{}"), Limits{}).stopping, Stopping::residual);
+  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).solver.stopping, Stopping::residual);
+  EXPECT_EQ(solve_request_from_json(parse_body(R"({"stopping":"residual"})"), Limits{}).solver.stopping, Stopping::residual);
+  EXPECT_EQ(solve_request_from_json(algebra, Limits{}).solver.stopping, Stopping::algebra_residual);
+  EXPECT_EQ(sweep_request_from_json(algebra, Limits{}).solver.stopping, Stopping::algebra_residual);
+  EXPECT_EQ(integrate_request_from_json(algebra, Limits{}).solver.stopping, Stopping::algebra_residual);
+  EXPECT_EQ(work_precision_request_from_json(algebra, Limits{}).solver.stopping, Stopping::algebra_residual);
+  EXPECT_EQ(work_precision_request_from_json(parse_body("{}"), Limits{}).solver.stopping, Stopping::residual);
   for (const char* bad : {R"({"stopping":"algebra"})", R"({"stopping":1})", R"({"stopping":"Residual"})"}) {
     const json body = parse_body(bad);
     for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),

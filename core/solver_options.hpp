@@ -1,0 +1,21 @@
+#pragma once
+// How a request solves each equation f(y) = 0: the method, the differential, the stopping rule and the linear
+// solver of the Newton system. Shared by solve, sweep, integrate and work-precision, and read by the solvers.
+#include "options.hpp"
+
+namespace lienewton {
+
+struct SolverOptions {
+  Method method = Method::newton_group;
+  Differential differential = Differential::exact;
+  double tol = 1e-13;
+  int max_iterations = 100;
+  LinearSolver linear_solver = LinearSolver::auto_select;
+  Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
+  bool include_iterates = false;  // keep every iterate y_n in the trace (solve only; sweeps and steps drop them)
+};
+
+// Checks tol and max_iterations; throws RequestError naming the field.
+void validate(const SolverOptions& options);
+
+}  // namespace lienewton
