@@ -284,35 +284,99 @@ std::optional<Mat> log_from_symmetric_part(const Mat& r, bool far_planes, double
   return (0.5 * (l - l.transpose())).eval();
 }
 
+// Degrees m of the Pade approximants r_m(x) = p_m(x) / p_m(-x) to e^x and the largest |x| at which each keeps
+// the relative backward error below eps (Higham, SIAM J. Matrix Anal. Appl. 26 (2005), Table 2.3).
+struct PadeDegree {
+  int m;
+  double theta;
+};
+constexpr PadeDegree kPadeDegrees[] = {{3, 1.495585217958292e-2},
+                                       {5, 2.539398330063230e-1},
+                                       {7, 9.504178996162932e-1},
+                                       {9, 2.097847961257068e0},
+                                       {13, 5.371920351148152e0}};
+// Coefficients b_0..b_m of p_m(x) = sum b_k x^k (Higham 2005, (2.3) scaled to integers).
+constexpr double kPade3[] = {120, 60, 12, 1};
+constexpr double kPade5[] = {30240, 15120, 3360, 420, 30, 1};
+constexpr double kPade7[] = {17297280, 8648640, 1995840, 277200, 25200, 1512, 56, 1};
+constexpr double kPade9[] = {17643225600, 8821612800, 2075673600, 302702400, 30270240, 2162160, 110880, 3960, 90, 1};
+constexpr double kPade13[] = {64764752532480000, 32382376266240000, 7771770303897600, 1187353796428800,
+                              129060195264000,   10559470521600,    670442572800,     33522128640,
+                              1323241920,        40840800,          960960,           16380,
+                              182,               1};
+
+// r_m(x) - 1 = (V - U)^-1 2U, with U and V the odd and even parts of p_m(x) (p_m(-x) = V - U): no 1 is
+// subtracted, so small entries keep their relative accuracy.
+Mat pade_expm1(const Mat& x, int m) {
+  const Eigen::Index n = x.rows();
+  const Mat id = Mat::Identity(n, n), x2 = x * x;
+  Mat odd, even;
+  if (m == 13) {  // Higham's evaluation: 6 products for degree 13
+    const double* b = kPade13;
+    const Mat x4 = x2 * x2, x6 = x4 * x2;
+    odd = x6 * (b[13] * x6 + b[11] * x4 + b[9] * x2) + b[7] * x6 + b[5] * x4 + b[3] * x2 + b[1] * id;
+    even = x6 * (b[12] * x6 + b[10] * x4 + b[8] * x2) + b[6] * x6 + b[4] * x4 + b[2] * x2 + b[0] * id;
+  } else {
+    const double* b = m == 3 ? kPade3 : m == 5 ? kPade5 : m == 7 ? kPade7 : kPade9;
+    Mat power = id;
+    odd = b[1] * id;
+    even = b[0] * id;
+    for (int k = 2; k <= m; k += 2) {
+      power = (power * x2).eval();
+      odd += b[k + 1] * power;
+      even += b[k] * power;
+    }
+  }
+  const Mat u = x * odd;
+  return Eigen::PartialPivLU<Mat>(even - u).solve(2.0 * u);
+}
+
+// SO(2) in closed form: rot(theta) - I with cos - 1 = -2 sin^2(theta/2), and its log by atan2 (exp(-v) is
+// exp(v)^T to the last bit, so exp(v) exp(-v) has log 0 exactly).
+Mat rotation2_minus_identity(double theta) {
+  const double h = std::sin(0.5 * theta), s = std::sin(theta);
+  return (Eigen::Matrix2d() << -2.0 * h * h, -s, s, -2.0 * h * h).finished();
+}
+
+Mat log2(const Mat& r, double* max_angle) {
+  if (r(0, 0) * r(1, 1) - r(0, 1) * r(1, 0) < 0.0)
+    throw LogDomainError("log of a matrix with determinant -1 (not in SO(N))", kNaN);
+  const double theta = std::atan2(0.5 * (r(1, 0) - r(0, 1)), 0.5 * (r(0, 0) + r(1, 1)));
+  if (std::abs(theta) > std::numbers::pi - kLogDomainMargin)
+    throw LogDomainError("log undefined: rotation angle " + std::to_string(std::abs(theta)) + " is at pi",
+                         std::abs(theta));
+  if (max_angle) *max_angle = std::abs(theta);
+  return (Eigen::Matrix2d() << 0.0, -theta, theta, 0.0).finished();
+}
+
 }  // namespace
 
 Mat expm1(const Mat& v) {
-  const Mat v2 = v * v;
-  const Eigen::SelfAdjointEigenSolver<Mat> eig(0.5 * (v2 + v2.transpose()));
-  // Eigenvalue errors grow like eps |v|^2: beyond angle pi the Schur form keeps exp(v) orthogonal to N eps.
-  if (-eig.eigenvalues()(0) > std::numbers::pi * std::numbers::pi) {
-    const SpectralForm s = spectral_form_of_skew(v);
-    return s.q * rotation_minus_identity(s) * s.q.transpose();
-  }
   const Eigen::Index n = v.rows();
-  Vec cos_minus_1(n), sinc(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double x = -eig.eigenvalues()(k);  // theta^2 (>= 0 up to rounding)
-    if (std::abs(x) < 1e-8) {                 // Taylor: truncation below x^3/720 < 2e-27
-      cos_minus_1(k) = -0.5 * x + x * x / 24.0;
-      sinc(k) = 1.0 - x / 6.0 + x * x / 120.0;
-    } else {
-      const double t = std::sqrt(x), h = std::sin(0.5 * t);
-      cos_minus_1(k) = -2.0 * h * h;
-      sinc(k) = std::sin(t) / t;
+  if (n == 2) return rotation2_minus_identity(0.5 * (v(1, 0) - v(0, 1)));
+  // v is normal, so r_m's error is its error at v's eigenvalues i theta_k: the degree is chosen by a bound on
+  // max |theta_k| = ||v||_2 <= min(||v||_1, ||v||_F / sqrt 2), then v is scaled by 2^-s into its range.
+  const double bound = std::min(v.cwiseAbs().colwise().sum().maxCoeff(), v.norm() / std::numbers::sqrt2);
+  if (!std::isfinite(bound)) return Mat::Constant(n, n, kNaN);
+  int m = 13, s = 0;
+  for (const auto& d : kPadeDegrees)
+    if (bound <= d.theta) {
+      m = d.m;
+      break;
     }
-  }
-  const Mat& q = eig.eigenvectors();
-  return q * (cos_minus_1.asDiagonal() * q.transpose() + sinc.asDiagonal() * (q.transpose() * v));
+  if (bound > kPadeDegrees[4].theta) s = static_cast<int>(std::ceil(std::log2(bound / kPadeDegrees[4].theta)));
+  Mat e = pade_expm1(std::ldexp(1.0, -s) * v, m);
+  for (int k = 0; k < s; ++k) e = (2.0 * e + e * e).eval();  // e^2x - 1 = 2 (e^x - 1) + (e^x - 1)^2
+  // Squaring doubles the distance from the group each time: one Newton step towards the orthogonal polar
+  // factor, X (3I - X^T X) / 2 with X = I + e, squares it away (d = I - X^T X, formed without the 1s).
+  const Mat d = -(e + e.transpose() + e.transpose() * e);
+  e += 0.5 * (d + e * d);
+  return e;
 }
 
 Mat log(const Mat& r, double* max_angle) {
   check_orthogonal(r, 1e-8);
+  if (r.rows() == 2) return log2(r, max_angle);
   if (auto l = log_from_symmetric_part(r, true, max_angle)) return *l;
   const SpectralForm s = spectral_form_of_rotation(r);
   if (max_angle) *max_angle = s.max_angle();

@@ -46,9 +46,10 @@ SpectralForm spectral_form_of_skew(const Mat& v);
 SpectralForm spectral_form_of_rotation(const Mat& r, double orthogonality_tol = 1e-8,
                                        double margin = kLogDomainMargin);
 
-// exp(v) - I = (C(v^2) - I) + S(v^2) v with C(x) = cos sqrt(-x), S(x) = sin sqrt(-x) / sqrt(-x): entire
-// functions of the symmetric v^2, applied through its eigen-decomposition (cheaper than a real Schur form).
-// Small entries keep their relative accuracy, so y exp(v) = y + y expm1(v) stays on the group.
+// exp(v) - I by Pade scaling and squaring (degree 3..13 chosen by a bound on v's largest angle, Higham 2005),
+// squared as e^2x - 1 = 2 (e^x - 1) + (e^x - 1)^2 and ended by one Newton step towards the orthogonal polar
+// factor: orthogonal to rounding (~N eps) at any angle. Small entries keep their relative accuracy, so
+// y exp(v) = y + y expm1(v) stays on the group.
 Mat expm1(const Mat& v);
 inline Mat exp(const Mat& v) { return Mat::Identity(v.rows(), v.cols()) + expm1(v); }
 

@@ -148,6 +148,35 @@ TEST(SONLog, FarPlanesOnTheirInvariantBlock) {
     }
 }
 
+// exp by Pade scaling and squaring with one orthogonality step (son.cpp) against exp(v) = Q blockdiag(rot theta_k, 1)
+// Q^T for v = Q blockdiag(theta_k J, 0) Q^T with known angles, from 1e-9 to 1000 (up to 2^8 squarings):
+// error <= 4 eps (1 + theta_max) sqrt(N) in Frobenius norm (the angles' own rounding, eps theta, is what any exp
+// inherits), orthogonality ||X^T X - I||_max <= 1e-15, and a tiny v keeps its relative accuracy in expm1.
+TEST(SONExp, PadeAgainstKnownAngles) {
+  std::mt19937_64 rng(23);
+  const std::vector<std::vector<double>> angle_sets = {{1e-9}, {0.3, 1e-9}, {3.0, 2.0}, {3.2, 0.5}, {10.0, 100.0}, {1000.0}};
+  for (int n : {2, 3, 8, 15, 64})
+    for (const auto& angles : angle_sets) {
+      if (2 * static_cast<int>(angles.size()) > n) continue;
+      const Mat q = random_rotation(n, rng);
+      Mat d = Mat::Identity(n, n), l = Mat::Zero(n, n);
+      for (std::size_t p = 0; p < angles.size(); ++p) {
+        const int i = 2 * static_cast<int>(p);
+        const double t = angles[p];
+        d.block<2, 2>(i, i) << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
+        l(i, i + 1) = -t;
+        l(i + 1, i) = t;
+      }
+      const Mat v = q * l * q.transpose(), expected = q * d * q.transpose();
+      const Mat x = exp(0.5 * (v - v.transpose()));
+      const double theta = *std::max_element(angles.begin(), angles.end());
+      EXPECT_LE((x - expected).norm(), 4 * kEps * (1 + theta) * std::sqrt(double(n))) << "n = " << n << ", " << theta;
+      EXPECT_LE((x.transpose() * x - Mat::Identity(n, n)).cwiseAbs().maxCoeff(), 1e-15) << "n = " << n << ", " << theta;
+    }
+  const Mat tiny = hat(Vec::LinSpaced(28, 1e-20, 3e-20), 8);
+  EXPECT_LE((expm1(tiny) - tiny).norm() / tiny.norm(), 4 * kEps);
+}
+
 // max_angle (no domain check) and SpectralForm::max_angle agree, and the spectral form rebuilds R and v.
 TEST(SONSpectralForm, RebuildsRotationAndSkew) {
   std::mt19937_64 rng(13);
