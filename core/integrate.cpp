@@ -120,9 +120,8 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
 
 void validate(const IntegrateRequest& req) {
   validate(req.problem);
-  validation::check_h("h", req.h);
-  if (!std::isfinite(req.t_end) || req.t_end <= 0.0 || req.t_end > validation::kMaxTEnd)
-    validation::invalid("t_end", "t_end must be a finite number in (0, 100]");
+  validation::check(fields::h, req.h, "h");
+  validation::check(fields::t_end, req.t_end, "t_end");
   if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
   if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
   validate(req.solver);

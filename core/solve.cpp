@@ -19,7 +19,7 @@ SolveResult solve_on(const G& group, const SolveRequest& req, const TraceCallbac
 
 void validate(const SolveRequest& req) {
   validate(req.problem);
-  validation::check_h("h", req.h);
+  validation::check(fields::h, req.h, "h");
   validate(req.solver);
 }
 

@@ -5,8 +5,8 @@
 namespace lienewton {
 
 void validate(const SolverOptions& options) {
-  validation::check_tol(options.tol);
-  validation::check_max_iterations(options.max_iterations);
+  validation::check(fields::tol, options.tol, "tol");
+  validation::check(fields::max_iterations, options.max_iterations, "max_iterations");
 }
 
 }  // namespace lienewton

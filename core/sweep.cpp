@@ -58,7 +58,7 @@ SweepRequest with_defaults(SweepRequest req) {
 void validate(const SweepRequest& req) {
   if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
   for (int n : req.n) validate(at_dimension(req.problem, n));
-  for (double h : req.h) validation::check_h("h", h);
+  for (double h : req.h) validation::check(fields::h, h, "h");
   validate(req.solver);
   if (req.methods.size() * req.n.size() * req.h.size() > kMaxCells)
     validation::invalid("h", "the grid has more than " + std::to_string(kMaxCells) + " cells");

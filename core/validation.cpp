@@ -4,21 +4,12 @@
 
 namespace lienewton::validation {
 
-void check_n(const std::string& field, int n) {
-  if (n < 2 || n > kMaxN) invalid(field, field + " must be an integer in [2, " + std::to_string(kMaxN) + "]");
+void check(const fields::NumberField& field, double x, const std::string& path) {
+  if (!field.contains(x)) invalid(path, field.message(path));
 }
 
-void check_h(const std::string& field, double h) {
-  if (!std::isfinite(h) || h <= 0.0 || h > kMaxH) invalid(field, field + " must be a finite number in (0, 1e6]");
-}
-
-void check_tol(double tol) {
-  if (!std::isfinite(tol) || tol < 1e-16 || tol > 1.0) invalid("tol", "tol must be a finite number in [1e-16, 1]");
-}
-
-void check_max_iterations(int max_iterations) {
-  if (max_iterations < 1 || max_iterations > kMaxIterationsLimit)
-    invalid("max_iterations", "max_iterations must be an integer in [1, " + std::to_string(kMaxIterationsLimit) + "]");
+void check(const fields::IntegerField& field, long long x, const std::string& path) {
+  if (!field.contains(x)) invalid(path, field.message(path));
 }
 
 void check_problem_dimension(ProblemKind problem, int n, const std::string& field) {

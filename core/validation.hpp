@@ -4,16 +4,12 @@
 #include <optional>
 #include <string>
 
-#include "request_error.hpp"
+#include "fields.hpp"
 #include "options.hpp"
+#include "request_error.hpp"
 #include "rigid_body_params.hpp"
 
 namespace lienewton::validation {
-
-inline constexpr int kMaxN = 100000;        // beyond any machine's memory; front ends set tighter caps
-inline constexpr int kMaxIterationsLimit = 100000;
-inline constexpr double kMaxH = 1e6;
-inline constexpr double kMaxTEnd = 100.0;
 
 [[noreturn]] inline void invalid(const std::string& field, const std::string& message) {
   throw RequestError(RequestError::Kind::invalid, field, message);
@@ -22,10 +18,9 @@ inline constexpr double kMaxTEnd = 100.0;
   throw RequestError(RequestError::Kind::unprocessable, field, message);
 }
 
-void check_n(const std::string& field, int n);
-void check_h(const std::string& field, double h);
-void check_tol(double tol);
-void check_max_iterations(int max_iterations);
+// A field of the table in fields.hpp; path names it in the error (e.g. "n", "cells[2].h").
+void check(const fields::NumberField& field, double x, const std::string& path);
+void check(const fields::IntegerField& field, long long x, const std::string& path);
 void check_problem_dimension(ProblemKind problem, int n, const std::string& field = "n");
 void check_rigid_body(const RigidBodyParams& params);
 void check_start_point(const std::optional<Eigen::MatrixXd>& z, int n);

@@ -1,5 +1,6 @@
 #include "server/json_codec.hpp"
 
+#include "core/fields.hpp"
 #include "core/validation.hpp"
 
 #include <climits>
@@ -78,26 +79,19 @@ double read_number(const json& v, const std::string& field, const std::string& m
   return d;
 }
 
-// A finite number in (0, max]; max_text is how the message spells max.
-double read_positive(const json& v, const std::string& field, double max, const std::string& max_text) {
-  const std::string message = field + " must be a finite number in (0, " + max_text + "]";
-  const double x = read_number(v, field, message);
-  if (!(x > 0 && x <= max)) fail(field, message);
+// A finite number within the field's bounds (core/fields.hpp), named by its path in the error.
+double read_field(const json& v, const fields::NumberField& field, const std::string& path) {
+  const double x = read_number(v, path, field.message(path));
+  if (!field.contains(x)) fail(path, field.message(path));
   return x;
 }
 
-double read_h(const json& v, const std::string& field) { return read_positive(v, field, validation::kMaxH, "1e6"); }
-
-double read_tol(const json& v, const std::string& field) {
-  const std::string message = field + " must be a finite number in [1e-16, 1]";
-  const double tol = read_number(v, field, message);
-  if (!(tol >= 1e-16 && tol <= 1)) fail(field, message);
-  return tol;
+// An integer within the field's bounds, capped by the server's limit (--max-n, --max-iterations).
+int read_field(const json& v, const fields::IntegerField& field, const std::string& path, long long cap) {
+  return read_int(v, path, field.min, std::min(field.max, cap));
 }
 
-double read_t_end(const json& v, const std::string& field) {
-  return read_positive(v, field, validation::kMaxTEnd, "100");
-}
+double read_h(const json& v, const std::string& path) { return read_field(v, fields::h, path); }
 
 bool read_bool(const json& v, const std::string& field) {
   if (!v.is_boolean()) fail(field, field + " must be true or false");
@@ -159,7 +153,7 @@ Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
 
 // n, with z's size as the default when only z is given.
 int read_n(const Fields& f, const Limits& limits, int fallback) {
-  if (auto x = f["n"]) return read_int(*x, "n", 2, limits.max_n);
+  if (auto x = f["n"]) return read_field(*x, fields::n, "n", limits.max_n);
   if (auto z = f["z"]; z && z->is_array() && z->size() >= 2 && z->size() <= static_cast<std::size_t>(limits.max_n)) {
     return static_cast<int>(z->size());
   }
@@ -182,8 +176,9 @@ void read_problem_spec(const Fields& f, const Limits& limits, Dimension dimensio
 void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s) {
   if (auto x = f["method"]) s.method = read_enum(*x, "method", method_from_string, kAllMethods);
   if (auto x = f["differential"]) s.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
-  if (auto x = f["tol"]) s.tol = read_tol(*x, "tol");
-  if (auto x = f["max_iterations"]) s.max_iterations = read_int(*x, "max_iterations", 1, limits.max_iterations);
+  if (auto x = f["tol"]) s.tol = read_field(*x, fields::tol, "tol");
+  if (auto x = f["max_iterations"])
+    s.max_iterations = read_field(*x, fields::max_iterations, "max_iterations", limits.max_iterations);
   if (auto x = f["linear_solver"])
     s.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
   if (auto x = f["stopping"]) s.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
@@ -260,7 +255,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
       r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
   }
   if (auto x = f["n"]) {
-    for (const auto& v : read_array(*x, "n", 1, max_axis, "integers")) r.n.push_back(read_int(v, "n", 2, limits.max_n));
+    for (const auto& v : read_array(*x, "n", 1, max_axis, "integers")) r.n.push_back(read_field(v, fields::n, "n", limits.max_n));
   }
   if (auto x = f["h"]) {
     for (const auto& v : read_array(*x, "h", 1, max_axis, "step sizes")) r.h.push_back(read_h(v, "h"));
@@ -268,7 +263,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
-    if (n > limits.max_n) fail("n", "n must be an integer in " + range_text(2, limits.max_n));
+    if (n > limits.max_n) fail("n", fields::n.message("n", limits.max_n));
   }
   const double cells = static_cast<double>(full.methods.size()) * static_cast<double>(full.n.size()) *
                        static_cast<double>(full.h.size());
@@ -286,7 +281,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
   if (auto x = f["h"]) r.h = read_h(*x, "h");
-  if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
+  if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
   if (auto x = f["integrator"]) r.integrator = read_enum(*x, "integrator", integrator_from_string, kAllIntegrators);
   if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
   if (r.t_end / r.h > limits.max_steps) {
@@ -301,7 +296,7 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
-  if (auto x = f["t_end"]) r.t_end = read_t_end(*x, "t_end");
+  if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
   if (auto x = f["choices"]) {
     const auto& arr = read_array(*x, "choices", 1, 64, "choice objects");
     for (std::size_t i = 0; i < arr.size(); ++i) {
@@ -349,7 +344,7 @@ SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
       return *v;
     };
     cell.method = read_enum(required("method"), c.path("method"), method_from_string, kAllMethods);
-    cell.n = read_int(required("n"), c.path("n"), 2, limits.max_n);
+    cell.n = read_field(required("n"), fields::n, c.path("n"), limits.max_n);
     cell.h = read_h(required("h"), c.path("h"));
     cell.status = read_enum(required("status"), c.path("status"), status_from_string, kAllStatuses);
     if (auto v = c["reason"]) {

@@ -1,10 +1,11 @@
 // The OpenAPI 3.0 document, generated from the route table plus the schemas of the JSON contract.
 #include <cctype>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "core/options.hpp"
 #include "core/status.hpp"
-#include "core/validation.hpp"
+#include "core/fields.hpp"
 #include "server/openapi_labels.hpp"
 #include "server/routes.hpp"
 
@@ -33,6 +34,16 @@ json object(json properties, std::vector<std::string> required = {}, bool closed
   if (closed) o["additionalProperties"] = false;
   return o;
 }
+// A bounded field's schema from its row in core/fields.hpp.
+json schema_of(const fields::NumberField& f) {
+  json s{{"type", "number"}, {"minimum", f.min}, {"maximum", f.max}, {"description", f.description}};
+  if (f.min_exclusive) s["exclusiveMinimum"] = true;
+  if (!std::isnan(f.default_value)) s["default"] = f.default_value;
+  return s;
+}
+json schema_of(const fields::IntegerField& f) {  // no maximum: the server's cap (--max-n ...) is lower
+  return json{{"type", "integer"}, {"minimum", f.min}, {"default", f.default_value}, {"description", f.description}};
+}
 json matrix(const char* description) {
   json m = array_of(array_of(json{{"type", "number"}}));
   m["description"] = description;
@@ -50,12 +61,12 @@ json schemas() {
                               "||f~(v_n)|| (3.21), the test Version 2 would normally use. Version 1 always uses ||f(y_n)||");
   stopping["default"] = "residual";
   const json status = enum_schema(kAllStatuses, "how the solve ended");
-  const json h = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 1e6}, {"description", "step size"}};
-  const json n = json{{"type", "integer"}, {"minimum", 2}, {"description", "matrix size N (capped by --max-n)"}};
-  const json tol = json{{"type", "number"}, {"minimum", 1e-16}, {"maximum", 1}, {"default", 1e-13}, {"description", "absolute tolerance on ||f||"}};
-  const json max_iterations = json{{"type", "integer"}, {"minimum", 1}, {"default", 100}, {"description", "capped by --max-iterations"}};
+  const json h = schema_of(fields::h);
+  const json n = schema_of(fields::n);
+  const json tol = schema_of(fields::tol);
+  const json max_iterations = schema_of(fields::max_iterations);
   const json seed = json{{"type", "integer"}, {"minimum", 0}, {"maximum", 18446744073709551615.0}, {"default", 1}, {"description", "unsigned 64-bit seed of the random start point"}};
-  const json t_end = json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", validation::kMaxTEnd}, {"description", "end time"}};
+  const json t_end = schema_of(fields::t_end);
   const json linear_solver = json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}}, {"default", "auto"},
                                   {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}};
   const json width = json{{"type", "integer"}, {"minimum", 64}, {"maximum", 4096}};

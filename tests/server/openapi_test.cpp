@@ -1,9 +1,12 @@
 // /openapi.json describes exactly the routes the server registers, and every documented route answers.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
+#include "core/fields.hpp"
 #include "core/status.hpp"
+#include "core/validation.hpp"
 #include "render/colormap.hpp"
 #include "render/series_style.hpp"
 #include "server/json_codec.hpp"
@@ -66,6 +69,51 @@ TEST(OpenApi, RequestSchemasListTheCodecFields) {
   for (const char* f : {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations"}) {
     EXPECT_TRUE(sweep.contains(f)) << f;
   }
+}
+
+// Each bounded field has one row in core/fields.hpp: the schema shows the row's bounds, the codec refuses the
+// first value beyond each bound with the row's message, and core validation refuses it with the same message.
+TEST(OpenApi, FieldTableBoundsAreTheSchemaTheCodecAndTheCore) {
+  const json doc = json::parse(openapi_document());
+  const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
+  const json& integrate = doc["components"]["schemas"]["IntegrateRequest"]["properties"];
+  const Limits limits = Limits::unlimited();
+  auto codec_error = [&](const std::string& name, const json& value) -> std::string {
+    json body = {{name, value}};
+    if (name == "t_end") body["h"] = 1e-3;  // keep h <= t_end out of the way
+    try {
+      name == "t_end" ? (void)integrate_request_from_json(body, limits) : (void)solve_request_from_json(body, limits);
+    } catch (const FieldError& e) {
+      EXPECT_EQ(e.field(), name);
+      return e.what();
+    }
+    return "accepted";
+  };
+  for (const fields::NumberField* f : fields::kNumberFields) {
+    const json& schema = (std::string(f->name) == "t_end" ? integrate : solve)[f->name];
+    EXPECT_EQ(schema["minimum"].get<double>(), f->min) << f->name;
+    EXPECT_EQ(schema["maximum"].get<double>(), f->max) << f->name;
+    EXPECT_EQ(schema.value("exclusiveMinimum", false), f->min_exclusive) << f->name;
+    const double below = f->min_exclusive ? f->min : std::nextafter(f->min, -1.0);
+    const double above = std::nextafter(f->max, 2 * f->max);
+    for (double bad : {below, above}) {
+      EXPECT_EQ(codec_error(f->name, bad), f->message(f->name)) << f->name << " " << bad;
+      try {
+        validation::check(*f, bad, f->name);
+        ADD_FAILURE() << f->name << " " << bad << " passed core validation";
+      } catch (const RequestError& e) {
+        EXPECT_EQ(std::string(e.what()), f->message(f->name));
+      }
+    }
+    EXPECT_EQ(codec_error(f->name, f->max), "accepted") << f->name;
+  }
+  for (const fields::IntegerField* f : fields::kIntegerFields) {
+    EXPECT_EQ(solve[f->name]["minimum"].get<long long>(), f->min) << f->name;
+    EXPECT_EQ(codec_error(f->name, f->min - 1), f->message(f->name)) << f->name;
+    EXPECT_EQ(codec_error(f->name, f->max + 1), f->message(f->name)) << f->name;
+  }
+  EXPECT_EQ(fields::h.message("h"), "h must be a finite number in (0, 1e6]");
+  EXPECT_EQ(fields::tol.range_text(), "[1e-16, 1]");
 }
 
 std::string css(render::Color c) {
