@@ -146,6 +146,20 @@ void SON_Log(benchmark::State& state) {
 }
 BENCHMARK(SON_Log)->Arg(3)->Arg(8)->Arg(15)->Arg(64)->Unit(benchmark::kMicrosecond);
 
+// The log a residual needs (finite differences, fixed point): coordinates and largest angle, no spectral form.
+void SON_LogVector(benchmark::State& state) {
+  const SONInputs in(static_cast<int>(state.range(0)));
+  double angle = 0;
+  if ((in.g.log_vector(in.rs[0], angle) - in.vs[0]).norm() > 1e-12 * in.vs[0].norm())
+    state.SkipWithError("log_vector(exp v) != v");
+  std::size_t i = 0;
+  for (auto _ : state) {
+    Eigen::VectorXd v = in.g.log_vector(in.rs[i++ % kInputs], angle);
+    benchmark::DoNotOptimize(v.data());
+  }
+}
+BENCHMARK(SON_LogVector)->Arg(3)->Arg(8)->Arg(15)->Arg(64)->Unit(benchmark::kMicrosecond);
+
 // One application u -> dexpinv_v(u) given the spectral form of v (which log computed: the solver reuses it).
 void SON_Dexpinv(benchmark::State& state) {
   const SONInputs in(static_cast<int>(state.range(0)));

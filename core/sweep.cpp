@@ -63,6 +63,17 @@ void validate(const SweepRequest& req) {
   if (req.methods.size() * req.n.size() * req.h.size() > kMaxCells)
     validation::invalid("h", "the grid has more than " + std::to_string(kMaxCells) + " cells");
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
+  if (req.shard && !(req.shard->count >= 1 && req.shard->index >= 0 && req.shard->index < req.shard->count))
+    validation::invalid("shard", "shard must have count >= 1 and 0 <= index < count");
+}
+
+std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard) {
+  const SweepRequest req = with_defaults(request);
+  std::vector<int> mine;
+  const std::vector<int> order = largest_n_first(req);
+  for (std::size_t k = static_cast<std::size_t>(shard.index); k < order.size(); k += static_cast<std::size_t>(shard.count))
+    mine.push_back(order[k]);
+  return mine;
 }
 
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
@@ -87,8 +98,10 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     if (!cancelled && should_continue && !should_continue()) cancelled = true;
     return !cancelled.load();
   };
-  parallel_for(static_cast<int>(result.cells.size()), req.threads, [&](int index) {
-    const std::size_t i = static_cast<std::size_t>(index);
+  // The cells to compute, in claim order: all of them, or this shard's.
+  const std::vector<int> order = req.shard ? shard_cells(req, *req.shard) : largest_n_first(req);
+  parallel_for(static_cast<int>(order.size()), req.threads, [&](int k) {
+    const std::size_t i = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
     const std::size_t m = i / per_method, ni = (i % per_method) / req.h.size(), hi = i % req.h.size();
     SolveRequest s{problems[ni], req.solver, req.h[hi]};
     s.solver.method = req.methods[m];
@@ -102,14 +115,54 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     std::lock_guard lock(callback_mutex);
     if (!on_cell(cell)) cancelled = true;
     return !cancelled.load();
-  }, largest_n_first(req));
+  });
   // A cancelled sweep returns the cells that finished, still in grid order.
   std::vector<SweepCell> finished;
   for (std::size_t i = 0; i < result.cells.size(); ++i)
-    if (done[i]) finished.push_back(std::move(result.cells[i]));
+    if (done[i]) {
+      finished.push_back(std::move(result.cells[i]));
+      if (req.shard) result.cell_indices.push_back(i);
+    }
+  result.grid_cells = result.cells.size();
+  result.shard = req.shard;
   result.cells = std::move(finished);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+SweepResult merge_shards(const std::vector<SweepResult>& parts) {
+  if (parts.empty() || !parts.front().shard) validation::invalid("shard", "merge needs the results of a sharded sweep");
+  const int count = parts.front().shard->count;
+  const std::size_t grid = parts.front().grid_cells;
+  std::vector<char> have_part(static_cast<std::size_t>(count), 0);
+  std::vector<std::optional<SweepCell>> cells(grid);
+  SweepResult merged;
+  for (const SweepResult& part : parts) {
+    if (!part.shard) validation::invalid("shard", "a result without shard is not part of a sharded sweep");
+    if (part.shard->count != count || part.grid_cells != grid)
+      validation::invalid("shard", "the results come from different shardings or grids");
+    const int index = part.shard->index;
+    if (index < 0 || index >= count) validation::invalid("shard", "shard index out of range");
+    if (have_part[static_cast<std::size_t>(index)]++)
+      validation::invalid("shard", "shard " + std::to_string(index) + " is given twice");
+    if (part.cell_indices.size() != part.cells.size())
+      validation::invalid("shard", "shard " + std::to_string(index) + " has a cell index per cell missing");
+    for (std::size_t k = 0; k < part.cells.size(); ++k) {
+      const std::size_t i = part.cell_indices[k];
+      if (i >= grid || cells[i]) validation::invalid("shard", "cell " + std::to_string(i) + " is out of range or repeated");
+      cells[i] = part.cells[k];
+    }
+    merged.seconds += part.seconds;
+  }
+  for (int i = 0; i < count; ++i)
+    if (!have_part[static_cast<std::size_t>(i)])
+      validation::invalid("shard", "shard " + std::to_string(i) + " of " + std::to_string(count) + " is missing");
+  for (std::size_t i = 0; i < grid; ++i) {
+    if (!cells[i]) validation::invalid("shard", "cell " + std::to_string(i) + " is in no shard (a part stopped early)");
+    merged.cells.push_back(std::move(*cells[i]));
+  }
+  merged.grid_cells = grid;
+  return merged;
 }
 
 }  // namespace lienewton

@@ -10,6 +10,14 @@ namespace lienewton {
 
 // The base problem and solver options, varied over a grid: every cell is the solve of problem at one n (starting
 // at start_point(n, seed); problem.n and problem.z are not used) by one of methods (solver.method is not used).
+// Part index of count of a grid, for batch schedulers (a Kubernetes Indexed Job, a Slurm array): it takes every
+// count-th cell of the largest-N-first claim order, so the parts cost about the same; `lienewton merge` joins the
+// parts' results into the unsharded one.
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+
 struct SweepRequest {
   ProblemSpec problem{};
   SolverOptions solver{.differential = Differential::finite_difference};
@@ -17,6 +25,7 @@ struct SweepRequest {
   std::vector<int> n;     // default: 2..15 (the paper's)
   std::vector<double> h;  // default: 2^-10 .. 2^10 (21 values)
   int threads = 0;        // 0: all cores
+  std::optional<Shard> shard;  // compute only this part of the grid
 };
 
 struct SweepCell {
@@ -34,7 +43,14 @@ struct SweepCell {
 struct SweepResult {
   std::vector<SweepCell> cells;  // ordered method-major, then n, then h (as requested), whatever the thread count
   double seconds = 0;
+  // A sharded sweep: its part, the size of the whole grid, and each cell's position in it (grid order).
+  std::optional<Shard> shard;
+  std::size_t grid_cells = 0;
+  std::vector<std::size_t> cell_indices;
 };
+
+// The grid positions (method-major, then n, then h) of the cells of `shard`, in the order they are claimed.
+std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard);
 
 // Fills in the paper's default grid where n or h are empty.
 SweepRequest with_defaults(SweepRequest request);
@@ -46,5 +62,10 @@ using CellCallback = std::function<bool(const SweepCell&)>;
 // cancels the sweep within one iteration (a client that left, a deadline). Cancelled cells are omitted.
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {},
                   const std::function<bool()>& should_continue = {});
+
+// Joins the results of every shard of one sweep into the unsharded result: the same cells in grid order, seconds
+// summed over the parts. Throws RequestError (field "shard") when a part is missing, repeated, unsharded, stopped
+// early, or from another sharding of another grid.
+SweepResult merge_shards(const std::vector<SweepResult>& parts);
 
 }  // namespace lienewton

@@ -131,6 +131,18 @@ Eigen::Vector3d read_vec3(const json& v, const std::string& field, bool positive
   return out;
 }
 
+// {"index": i, "count": k}, 0 <= i < k.
+Shard read_shard(const json& v, const std::string& field) {
+  Fields f(v, field + ".", {"index", "count"});
+  const json* index = f["index"];
+  const json* count = f["count"];
+  if (!index || !count) fail(field, field + " needs index and count");
+  Shard s;
+  s.count = read_int(*count, f.path("count"), 1, 1000000);
+  s.index = read_int(*index, f.path("index"), 0, s.count - 1);
+  return s;
+}
+
 RigidBodyParams read_rigid_body(const json& v, const std::string& field) {
   Fields f(v, field + ".", {"inertia", "momentum"});
   RigidBodyParams p;
@@ -197,6 +209,7 @@ Limits Limits::unlimited() {
   l.max_grid_cells = std::numeric_limits<std::size_t>::max();
   l.max_steps = std::numeric_limits<double>::infinity();
   l.max_frames = INT_MAX;
+  l.max_threads = 1024;
   return l;
 }
 
@@ -244,7 +257,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver"});
+                      "stopping", "linear_solver", "threads", "shard"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -260,6 +273,8 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   if (auto x = f["h"]) {
     for (const auto& v : read_array(*x, "h", 1, max_axis, "step sizes")) r.h.push_back(read_h(v, "h"));
   }
+  if (auto x = f["threads"]) r.threads = read_int(*x, "threads", 0, limits.max_threads);
+  if (auto x = f["shard"]) r.shard = read_shard(*x, "shard");
   // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
@@ -329,11 +344,25 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
 }
 
 SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "sweep.", {"cells", "seconds"});
+  Fields f(body, "sweep.", {"cells", "seconds", "shard"});
   SweepResult r;
+  if (auto x = f["shard"]) {  // a part of a sharded sweep: its part, the grid's size, its cells' grid positions
+    Fields s(*x, "sweep.shard.", {"index", "count", "grid_cells", "cell_indices"});
+    const auto required = [&](std::string_view name) -> const json& {
+      const json* v = s[name];
+      if (!v) fail(s.path(name), s.path(name) + " is required");
+      return *v;
+    };
+    r.shard = Shard{};
+    r.shard->count = read_int(required("count"), s.path("count"), 1, 1000000);
+    r.shard->index = read_int(required("index"), s.path("index"), 0, r.shard->count - 1);
+    r.grid_cells = static_cast<std::size_t>(read_int(required("grid_cells"), s.path("grid_cells"), 0, INT_MAX));
+    for (const auto& i : read_array(required("cell_indices"), s.path("cell_indices"), 0, r.grid_cells, "cell indices"))
+      r.cell_indices.push_back(static_cast<std::size_t>(read_int(i, s.path("cell_indices"), 0, INT_MAX)));
+  }
   const json* cells = f["cells"];
   if (!cells) fail("sweep.cells", "sweep.cells is required");
-  const auto& arr = read_array(*cells, "sweep.cells", 1, limits.max_grid_cells, "cell objects");
+  const auto& arr = read_array(*cells, "sweep.cells", r.shard ? 0 : 1, limits.max_grid_cells, "cell objects");
   for (std::size_t i = 0; i < arr.size(); ++i) {
     Fields c(arr[i], "sweep.cells[" + std::to_string(i) + "].",
              {"method", "n", "h", "status", "reason", "iterations", "rate", "residual", "seconds"});
@@ -426,7 +455,13 @@ json to_json(const SweepCell& c) {
 json to_json(const SweepResult& r) {
   json cells = json::array();
   for (const auto& c : r.cells) cells.push_back(to_json(c));
-  return json{{"cells", std::move(cells)}, {"seconds", finite_or_null(r.seconds)}};
+  json out{{"cells", std::move(cells)}, {"seconds", finite_or_null(r.seconds)}};
+  if (r.shard)
+    out["shard"] = json{{"index", r.shard->index},
+                        {"count", r.shard->count},
+                        {"grid_cells", r.grid_cells},
+                        {"cell_indices", r.cell_indices}};
+  return out;
 }
 
 json to_json(const StepRecord& s) {

@@ -110,12 +110,22 @@ json schemas() {
   s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
-                              {"linear_solver", linear_solver}, {"stopping", stopping}});
+                              {"linear_solver", linear_solver}, {"stopping", stopping},
+                              {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
+                                               {"description", "threads of this sweep (0: all cores)"}}},
+                              {"shard", object({{"index", integer("this part, 0 <= index < count")},
+                                                {"count", integer("parts of the grid (>= 1)")}},
+                                               {"index", "count"})}});
   s["SweepCell"] = object({{"method", method}, {"n", integer("N")}, {"h", number("step size")}, {"status", status},
                            {"reason", json{{"type", "string"}}}, {"iterations", integer("")},
                            {"rate", nullable_number("")}, {"residual", nullable_number("")}},
                           {"method", "n", "h", "status", "reason", "iterations", "rate", "residual"}, false);
-  s["SweepResult"] = object({{"cells", array_of(ref("SweepCell"))}, {"seconds", number("wall time")}}, {"cells", "seconds"}, false);
+  s["SweepResult"] = object({{"cells", array_of(ref("SweepCell"))}, {"seconds", number("wall time")},
+                             {"shard", object({{"index", integer("")}, {"count", integer("")},
+                                               {"grid_cells", integer("cells of the whole grid")},
+                                               {"cell_indices", array_of(integer("grid position of each cell"))}},
+                                              {"index", "count", "grid_cells", "cell_indices"})}},
+                            {"cells", "seconds"}, false);
   s["IntegrateRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"t_end", t_end}, {"integrator", integrator},
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},

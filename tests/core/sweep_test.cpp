@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "core/request_error.hpp"
 #include "core/sweep.hpp"
 
 namespace lienewton {
@@ -94,6 +95,38 @@ TEST(Sweep, ResultDoesNotDependOnThreadCount) {
     EXPECT_EQ(one.cells[i].iterations, three.cells[i].iterations);
     EXPECT_EQ(one.cells[i].residual, three.cells[i].residual);  // bit for bit
   }
+}
+
+// Shards partition the grid: 4 parts of the 2 x 3 x 3 = 18 cells (5, 5, 4, 4: every 4th in claim order) hold every
+// cell once, and merge_shards gives the unsharded result cell for cell, bit for bit.
+// A missing, repeated or unsharded part is refused.
+TEST(Sweep, ShardsMergeToTheUnshardedSweep) {
+  SweepRequest req;
+  req.problem.kind = ProblemKind::paper_sine;
+  req.solver.differential = Differential::finite_difference;
+  req.methods = {Method::newton_group, Method::newton_algebra};
+  req.n = {2, 5, 9};
+  req.h = {0.125, 2.0, 64.0};
+  const SweepResult whole = sweep(req);
+  std::vector<SweepResult> parts;
+  for (int i = 0; i < 4; ++i) {
+    req.shard = Shard{i, 4};
+    parts.push_back(sweep(req));
+    EXPECT_EQ(parts.back().cells.size(), i < 2 ? 5u : 4u) << "part " << i;  // every 4th of 18 in claim order
+  }
+  std::swap(parts[0], parts[3]);  // any order
+  const SweepResult merged = merge_shards(parts);
+  ASSERT_EQ(merged.cells.size(), whole.cells.size());
+  for (std::size_t i = 0; i < whole.cells.size(); ++i) {
+    const SweepCell &a = whole.cells[i], &b = merged.cells[i];
+    EXPECT_TRUE(a.method == b.method && a.n == b.n && a.h == b.h && a.status == b.status && a.reason == b.reason &&
+                a.iterations == b.iterations && a.rate == b.rate && a.residual == b.residual)
+        << "cell " << i;
+  }
+  EXPECT_FALSE(merged.shard);
+  EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2]}), RequestError);           // one missing
+  EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2], parts[2]}), RequestError); // one repeated
+  EXPECT_THROW((void)merge_shards({whole}), RequestError);                                  // not sharded
 }
 
 TEST(Sweep, CancelStopsWithinOneIterationAndKeepsFinishedCellsInOrder) {
