@@ -308,27 +308,32 @@ constexpr double kPade13[] = {64764752532480000, 32382376266240000, 777177030389
 // r_m(x) - 1 = (V - U)^-1 2U, with U and V the odd and even parts of p_m(x) (p_m(-x) = V - U): no 1 is
 // subtracted, so small entries keep their relative accuracy.
 Mat pade_expm1(const Mat& x, int m) {
-  const Eigen::Index n = x.rows();
-  const Mat id = Mat::Identity(n, n), x2 = x * x;
+  const double* b = m == 13 ? kPade13 : m == 3 ? kPade3 : m == 5 ? kPade5 : m == 7 ? kPade7 : kPade9;
+  const Mat x2 = x * x;
   Mat odd, even;
   if (m == 13) {  // Higham's evaluation: 6 products for degree 13
-    const double* b = kPade13;
     const Mat x4 = x2 * x2, x6 = x4 * x2;
-    odd = x6 * (b[13] * x6 + b[11] * x4 + b[9] * x2) + b[7] * x6 + b[5] * x4 + b[3] * x2 + b[1] * id;
-    even = x6 * (b[12] * x6 + b[10] * x4 + b[8] * x2) + b[6] * x6 + b[4] * x4 + b[2] * x2 + b[0] * id;
+    odd.noalias() = x6 * (b[13] * x6 + b[11] * x4 + b[9] * x2);
+    odd += b[7] * x6 + b[5] * x4 + b[3] * x2;
+    even.noalias() = x6 * (b[12] * x6 + b[10] * x4 + b[8] * x2);
+    even += b[6] * x6 + b[4] * x4 + b[2] * x2;
   } else {
-    const double* b = m == 3 ? kPade3 : m == 5 ? kPade5 : m == 7 ? kPade7 : kPade9;
-    Mat power = id;
-    odd = b[1] * id;
-    even = b[0] * id;
-    for (int k = 2; k <= m; k += 2) {
+    Mat power = x2;
+    odd = b[3] * x2;
+    even = b[2] * x2;
+    for (int k = 4; k <= m; k += 2) {
       power = (power * x2).eval();
       odd += b[k + 1] * power;
       even += b[k] * power;
     }
   }
-  const Mat u = x * odd;
-  return Eigen::PartialPivLU<Mat>(even - u).solve(2.0 * u);
+  odd.diagonal().array() += b[1];  // the identity terms, on the diagonal only
+  even.diagonal().array() += b[0];
+  Mat u;
+  u.noalias() = x * odd;
+  even -= u;
+  u *= 2.0;
+  return Eigen::PartialPivLU<Mat>(even).solve(u);
 }
 
 // SO(2) in closed form: rot(theta) - I with cos - 1 = -2 sin^2(theta/2), and its log by atan2 (exp(-v) is
@@ -368,7 +373,9 @@ Mat expm1(const Mat& v) {
   Mat e = pade_expm1(std::ldexp(1.0, -s) * v, m);
   for (int k = 0; k < s; ++k) e = (2.0 * e + e * e).eval();  // e^2x - 1 = 2 (e^x - 1) + (e^x - 1)^2
   // Squaring doubles the distance from the group each time: one Newton step towards the orthogonal polar
-  // factor, X (3I - X^T X) / 2 with X = I + e, squares it away (d = I - X^T X, formed without the 1s).
+  // factor, X (3I - X^T X) / 2 with X = I + e, squares it away (d = I - X^T X, formed without the 1s). Without
+  // squarings r_m(v) = p(v)^-T p(v) is orthogonal to the rounding of one LU solve.
+  if (s == 0) return e;
   const Mat d = -(e + e.transpose() + e.transpose() * e);
   e += 0.5 * (d + e * d);
   return e;
