@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/groups/with_group.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -93,7 +94,9 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
   return out;
 }
 
-std::string group_name(int n) { return "SO(" + std::to_string(n) + ")"; }
+std::string group_name(int n) {
+  return with_group(n, [](const auto& group) { return group.name(); });
+}
 
 std::string number_text(double x) {
   char text[32];

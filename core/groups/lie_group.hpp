@@ -12,6 +12,7 @@
 //   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor).
 // Adding a group: one header here that satisfies LieGroup, one line in tests/core/lie_group_properties_test.cpp.
 #include <concepts>
+#include <string>
 
 namespace lienewton {
 
@@ -19,6 +20,7 @@ template <class G>
 concept LieGroup = requires(const G g, const typename G::Element y, const typename G::Vector v,
                             const typename G::Spectral s, double& angle) {
   { g.n() } -> std::same_as<int>;
+  { g.name() } -> std::convertible_to<std::string>;  // as a title says it: "SO(3)"
   { g.dim() } -> std::same_as<int>;
   { g.identity() } -> std::convertible_to<typename G::Element>;
   { g.compose(y, y) } -> std::convertible_to<typename G::Element>;

@@ -3,6 +3,7 @@
 // and so is Spectral: the closed forms need nothing else.
 #include <Eigen/Dense>
 #include <numbers>
+#include <string>
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
@@ -20,6 +21,7 @@ struct SO3Group {
   static constexpr double kLogMargin = kLogDomainMargin;
 
   int n() const { return 3; }
+  std::string name() const { return "SO(3)"; }
   int dim() const { return 3; }
   Element identity() const { return Element::Identity(); }
   Element compose(const Element& a, const Element& b) const { return a * b; }

@@ -2,6 +2,7 @@
 // SO(N), any N >= 2, through the spectral forms of son.hpp; coordinates on the paper's basis E_ij - E_ji.
 #include <Eigen/Dense>
 #include <numbers>
+#include <string>
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
@@ -20,6 +21,7 @@ struct SONGroup {
 
   explicit SONGroup(int n) : n_(n) {}
   int n() const { return n_; }
+  std::string name() const { return "SO(" + std::to_string(n_) + ")"; }
   int dim() const { return son::algebra_dim(n_); }
   Element identity() const { return Element::Identity(n_, n_); }
   Element compose(const Element& a, const Element& b) const { return a * b; }

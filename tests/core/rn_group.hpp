@@ -3,6 +3,7 @@
 // versions must reduce to classical Newton on it; no production path uses it.
 #include <Eigen/Dense>
 #include <limits>
+#include <string>
 
 #include "core/groups/lie_group.hpp"
 
@@ -18,6 +19,7 @@ struct RnGroup {
 
   explicit RnGroup(int n) : n_(n) {}
   int n() const { return n_; }
+  std::string name() const { return "R^" + std::to_string(n_); }
   int dim() const { return n_; }
   Element identity() const { return Element::Zero(n_); }
   Element compose(const Element& a, const Element& b) const { return a + b; }

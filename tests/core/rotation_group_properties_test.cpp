@@ -20,6 +20,7 @@
 
 #include "core/groups/so3_group.hpp"
 #include "core/groups/son_group.hpp"
+#include "core/groups/with_group.hpp"
 #include "random_algebra.hpp"
 
 namespace lienewton {
@@ -273,6 +274,21 @@ TYPED_TEST(RotationGroupProperties, LogOutsideTheGroupThrowsTypedError) {
   bad.emplace_back("Inf entry", inf);
   for (const auto& [what, m] : bad) {
     EXPECT_THROW((void)this->g.log(m), son::LogDomainError) << what;
+  }
+}
+
+}  // namespace
+}  // namespace lienewton
+
+namespace lienewton {
+namespace {
+
+// Titles and labels name the group the request picked: with_group's choice, by the group's own name.
+TEST(RotationGroupNames, WithGroupPicksTheGroupATitleNames) {
+  EXPECT_EQ(SO3Group{}.name(), "SO(3)");
+  for (int n : {2, 3, 8, 64}) {
+    EXPECT_EQ(with_group(n, [](const auto& g) { return g.name(); }), "SO(" + std::to_string(n) + ")");
+    EXPECT_EQ(with_group(n, [](const auto& g) { return g.n(); }), n);
   }
 }
 
