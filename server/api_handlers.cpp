@@ -8,6 +8,7 @@
 #include "core/sweep.hpp"
 #include "core/work_precision.hpp"
 #include "server/http_errors.hpp"
+#include "server/http_validators.hpp"
 #include "server/output_limits.hpp"
 #include "server/query_params.hpp"
 #include "server/render_requests.hpp"
@@ -39,6 +40,9 @@ class ApiHandlers::Slot {
 };
 
 namespace {
+
+// Renders may be stored, but are revalidated against their ETag (which changes with the build).
+constexpr const char* kRenderCacheControl = "no-cache";
 
 // A GET form carries its request as query parameters; list_fields are array-valued in the JSON request.
 json request_json(const HttpRequest& req, const std::set<std::string>& list_fields = {}) {
@@ -299,6 +303,11 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
 HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, RenderRequestFn draw,
                                  double budget_seconds) {
   check_image_pixels(body, options_.output);
+  // A GET render is a pure function of the route, the canonical request (keys sorted) and the build, so its tag
+  // is known before drawing: a repeated GET costs a hash, not a render. POST renders stay uncached.
+  const bool cacheable = req.method == "GET";
+  const std::string etag = cacheable ? content_etag(build_id() + " " + req.path + " " + dump(body)) : "";
+  if (cacheable && none_match_fails(req, etag, false)) return not_modified(etag, kRenderCacheControl);
   const auto token_ptr = make_token(req, budget_seconds);
   const CancellationToken& token = *token_ptr;
   const CancellationScope scope(&token);
@@ -322,7 +331,8 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
     throw ApiError(503, "render_unavailable", "", "the offscreen renderer is unavailable; everything else still works");
   }
   HttpResponse res;
-  res.set_header("Cache-Control", "no-store");
+  res.set_header("Cache-Control", cacheable ? kRenderCacheControl : "no-store");
+  if (cacheable) res.set_header("ETag", etag);
   res.content_type = "image/png";
   res.body.assign(png.begin(), png.end());
   return res;

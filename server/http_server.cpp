@@ -151,6 +151,7 @@ HttpRequest to_exchange(const httplib::Request& req) {
 void send(HttpResponse answer, httplib::Response& res) {
   res.status = answer.status;
   for (auto& [name, value] : answer.headers) res.set_header(name, value);
+  if (answer.status == 304) return;  // no body, and no Content-Type of a body not sent
   if (!answer.stream) {
     res.set_content(std::move(answer.body), answer.content_type);
     return;

@@ -1,4 +1,5 @@
 // The OpenAPI 3.0 document, generated from the route table plus the schemas of the JSON contract.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -267,6 +268,14 @@ std::string openapi_document() {
       content[type] = media;
     }
     op["responses"]["200"] = {{"description", "OK"}, {"content", content}};
+    const bool png = std::find(r.success_types.begin(), r.success_types.end(), "image/png") != r.success_types.end();
+    if (r.method == "GET" && png) {
+      // GET renders carry a validator (server/http_validators.hpp): a repeated request answers 304 undrawn.
+      op["responses"]["200"]["headers"]["ETag"] = {
+          {"description", "W/\"hash of the build, the route and the canonical request\"; send it back as If-None-Match"},
+          {"schema", {{"type", "string"}}}};
+      op["responses"]["304"] = {{"description", "Not Modified: If-None-Match named this request's ETag; nothing was drawn"}};
+    }
     for (int status : r.errors) {
       op["responses"][std::to_string(status)] = {{"description", status_text(status)},
                                                  {"content", {{"application/json", {{"schema", ref("Error")}}}}}};

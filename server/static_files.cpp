@@ -5,11 +5,14 @@
 #include <iterator>
 
 #include "server/http_errors.hpp"
+#include "server/http_validators.hpp"
 
 namespace lienewton::service {
 namespace {
 
 constexpr std::uintmax_t kMaxFileSize = 32u << 20;
+// Browsers keep the file but ask again each time; the ETag turns an unchanged file into a body-less 304.
+constexpr const char* kStaticCacheControl = "no-cache";
 
 std::string content_type(const std::filesystem::path& file) {
   const std::string ext = file.extension().string();
@@ -75,7 +78,11 @@ HttpResponse serve_static(const std::string& web_root, const HttpRequest& req) {
   std::ifstream in(file, std::ios::binary);
   std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) return error_response(404, "not_found", "", "no such route or file: " + req.path);
+  const std::string etag = content_etag(body);
+  // If-None-Match is evaluated before Range (RFC 9110 13.2.2).
+  if (none_match_fails(req, etag, true)) return not_modified(etag, kStaticCacheControl);
   HttpResponse res;
+  res.set_header("ETag", etag);
   if (req.ranges.size() == 1) {
     // The transport slices a 206 body to the single range; an unsatisfiable range is answered here.
     const auto [first, last] = req.ranges[0];
@@ -88,7 +95,7 @@ HttpResponse serve_static(const std::string& web_root, const HttpRequest& req) {
     }
     res.status = 206;
   }
-  res.set_header("Cache-Control", "no-cache");
+  res.set_header("Cache-Control", kStaticCacheControl);
   res.content_type = content_type(file);
   res.body = std::move(body);
   return res;

@@ -214,6 +214,73 @@ TEST_F(Routes, StaticFilesStayInsideTheWebRoot) {
   EXPECT_EQ(outside->status, 416);
 }
 
+TEST_F(Routes, StaticFilesRevalidateByETag) {
+  auto c = client();
+  const auto file = server_->base / "web" / "validated.txt";
+  std::ofstream(file) << "first version";
+  auto first = c.Get("/validated.txt");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200);
+  const std::string etag = first->get_header_value("ETag");
+  ASSERT_EQ(etag.size(), 20u) << etag;  // W/"16 hex digits"
+  EXPECT_EQ(first->get_header_value("Cache-Control"), "no-cache");
+  auto again = c.Get("/validated.txt", {{"If-None-Match", etag}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+  EXPECT_TRUE(again->body.empty());
+  EXPECT_EQ(again->get_header_value("ETag"), etag);
+  // A list, the strong form of the same tag and "*" all match; another tag does not.
+  for (const std::string& header : {"\"0000000000000000\", " + etag, etag.substr(2), std::string("*")}) {
+    auto listed = c.Get("/validated.txt", {{"If-None-Match", header}});
+    ASSERT_TRUE(listed);
+    EXPECT_EQ(listed->status, 304) << header;
+  }
+  auto other = c.Get("/validated.txt", {{"If-None-Match", "\"0000000000000000\""}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 200);
+  EXPECT_EQ(other->body, "first version");
+  // A changed file gets a new tag: the old one no longer matches.
+  std::ofstream(file) << "second version";
+  auto changed = c.Get("/validated.txt", {{"If-None-Match", etag}});
+  ASSERT_TRUE(changed);
+  EXPECT_EQ(changed->status, 200);
+  EXPECT_EQ(changed->body, "second version");
+  EXPECT_NE(changed->get_header_value("ETag"), etag);
+}
+
+TEST_F(Routes, GetRendersRevalidateByETag) {
+  auto c = client();
+  const std::string url = "/api/v1/render/frames?n=3&h=0.5&width=64&height=64";
+  auto first = c.Get(url);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200) << first->body;
+  const std::string etag = first->get_header_value("ETag");
+  ASSERT_FALSE(etag.empty());
+  EXPECT_EQ(first->get_header_value("Cache-Control"), "no-cache");
+  auto again = c.Get(url, {{"If-None-Match", etag}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+  EXPECT_TRUE(again->body.empty());
+  // The same request spelled with its parameters in another order is the same canonical request.
+  auto reordered = c.Get("/api/v1/render/frames?height=64&width=64&h=0.5&n=3", {{"If-None-Match", etag}});
+  ASSERT_TRUE(reordered);
+  EXPECT_EQ(reordered->status, 304);
+  // A changed request draws anew; "*" does not stand in for a picture not yet drawn; POST is never cached.
+  auto changed = c.Get("/api/v1/render/frames?n=3&h=0.25&width=64&height=64", {{"If-None-Match", etag}});
+  ASSERT_TRUE(changed);
+  EXPECT_EQ(changed->status, 200);
+  EXPECT_TRUE(is_png(changed->body));
+  EXPECT_NE(changed->get_header_value("ETag"), etag);
+  auto star = c.Get(url, {{"If-None-Match", "*"}});
+  ASSERT_TRUE(star);
+  EXPECT_EQ(star->status, 200);
+  auto post = c.Post("/api/v1/render/frames", R"({"n":3,"h":0.5,"width":64,"height":64})", "application/json");
+  ASSERT_TRUE(post);
+  ASSERT_EQ(post->status, 200);
+  EXPECT_EQ(post->get_header_value("Cache-Control"), "no-store");
+  EXPECT_FALSE(post->has_header("ETag"));
+}
+
 TEST_F(Routes, RequestIdIsEchoedOnlyWhenSafe) {
   auto c = client();
   auto given = c.Get("/livez", {{"X-Request-Id", "trace-123.abc_X"}});
