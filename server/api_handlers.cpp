@@ -245,7 +245,16 @@ HttpResponse ApiHandlers::metrics(const HttpRequest&) {
   res.body = metrics_.render();
   return res;
 }
-HttpResponse ApiHandlers::openapi(const HttpRequest&) { return json_response(openapi_document_); }
+// The document is fixed for the life of the process: the dashboard's reloads revalidate it like a static file.
+HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
+  static const char* const kCacheControl = "no-cache";
+  const std::string etag = content_etag(openapi_document_);
+  if (none_match_fails(req, etag, true)) return not_modified(etag, kCacheControl);
+  HttpResponse res = json_response(openapi_document_);
+  res.set_header("ETag", etag);
+  res.set_header("Cache-Control", kCacheControl);
+  return res;
+}
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
 HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse, double budget_seconds) {

@@ -248,6 +248,23 @@ TEST_F(Routes, StaticFilesRevalidateByETag) {
   EXPECT_NE(changed->get_header_value("ETag"), etag);
 }
 
+TEST_F(Routes, OpenApiRevalidatesByETag) {
+  auto c = client();
+  auto first = c.Get("/openapi.json");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200);
+  const std::string etag = first->get_header_value("ETag");
+  ASSERT_FALSE(etag.empty());
+  auto again = c.Get("/openapi.json", {{"If-None-Match", etag}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+  EXPECT_TRUE(again->body.empty());
+  auto other = c.Get("/openapi.json", {{"If-None-Match", "W/\"0000000000000000\""}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 200);
+  EXPECT_EQ(other->body, first->body);
+}
+
 TEST_F(Routes, GetRendersRevalidateByETag) {
   auto c = client();
   const std::string url = "/api/v1/render/frames?n=3&h=0.5&width=64&height=64";
