@@ -125,6 +125,7 @@ void validate(const IntegrateRequest& req) {
   if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
   if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
   validate(req.solver);
+  check_globalization(req.solver.method, req.solver);
   if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
 }
 

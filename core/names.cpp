@@ -12,6 +12,7 @@ constexpr std::pair<Status, std::string_view> kStatusNames[] = {
     {Status::diverged, "diverged"},     {Status::non_finite, "non_finite"},
     {Status::left_log_domain, "left_log_domain"}, {Status::singular_differential, "singular_differential"},
     {Status::stagnated, "stagnated"},   {Status::off_branch, "off_branch"},
+    {Status::local_minimum, "local_minimum"},
     {Status::cancelled, "cancelled"}};
 constexpr std::pair<ProblemKind, std::string_view> kProblemNames[] = {
     {ProblemKind::paper_linear, "paper-linear"}, {ProblemKind::paper_sine, "paper-sine"},
@@ -28,6 +29,9 @@ constexpr std::pair<LinearSolver, std::string_view> kLinearSolverNames[] = {
     {LinearSolver::auto_select, "auto"}, {LinearSolver::lu, "lu"}, {LinearSolver::gmres, "gmres"}};
 constexpr std::pair<Stopping, std::string_view> kStoppingNames[] = {
     {Stopping::residual, "residual"}, {Stopping::algebra_residual, "algebra-residual"}};
+constexpr std::pair<Globalization, std::string_view> kGlobalizationNames[] = {
+    {Globalization::none, "none"}, {Globalization::line_search, "line-search"},
+    {Globalization::trust_region, "trust-region"}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {
@@ -51,6 +55,7 @@ std::string_view to_string(Differential v) { return name_of(kDifferentialNames, 
 std::string_view to_string(Integrator v) { return name_of(kIntegratorNames, v); }
 std::string_view to_string(LinearSolver v) { return name_of(kLinearSolverNames, v); }
 std::string_view to_string(Stopping v) { return name_of(kStoppingNames, v); }
+std::string_view to_string(Globalization v) { return name_of(kGlobalizationNames, v); }
 std::optional<Status> status_from_string(std::string_view s) { return value_of(kStatusNames, s); }
 std::optional<ProblemKind> problem_from_string(std::string_view s) { return value_of(kProblemNames, s); }
 std::optional<Method> method_from_string(std::string_view s) { return value_of(kMethodNames, s); }
@@ -58,5 +63,8 @@ std::optional<Differential> differential_from_string(std::string_view s) { retur
 std::optional<Integrator> integrator_from_string(std::string_view s) { return value_of(kIntegratorNames, s); }
 std::optional<LinearSolver> linear_solver_from_string(std::string_view s) { return value_of(kLinearSolverNames, s); }
 std::optional<Stopping> stopping_from_string(std::string_view s) { return value_of(kStoppingNames, s); }
+std::optional<Globalization> globalization_from_string(std::string_view s) {
+  return value_of(kGlobalizationNames, s);
+}
 
 }  // namespace lienewton

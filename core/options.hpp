@@ -20,6 +20,10 @@ enum class LinearSolver { auto_select, lu, gmres };
 // paper measures every method in section 5; algebra-residual = ||f~(v_n)|| <= tol, the test Version 2 "would
 // normally" use (3.21), blind to log's branch. Version 1 always stops on ||f(y_n)||.
 enum class Stopping { residual, algebra_residual };
+// How Version 1 (3.5) and Version 2 (3.20) reach a root from afar (core/solvers/globalization.hpp): none = the
+// paper's full steps; line-search = Armijo backtracking on phi = 1/2 ||f||^2 with a Levenberg-Marquardt
+// fallback; trust-region = dogleg on the model 1/2 ||f + D s||^2.
+enum class Globalization { none, line_search, trust_region };
 
 std::string_view to_string(ProblemKind);
 std::string_view to_string(Method);
@@ -27,12 +31,14 @@ std::string_view to_string(Differential);
 std::string_view to_string(Integrator);
 std::string_view to_string(LinearSolver);
 std::string_view to_string(Stopping);
+std::string_view to_string(Globalization);
 std::optional<ProblemKind> problem_from_string(std::string_view);
 std::optional<Method> method_from_string(std::string_view);
 std::optional<Differential> differential_from_string(std::string_view);
 std::optional<Integrator> integrator_from_string(std::string_view);
 std::optional<LinearSolver> linear_solver_from_string(std::string_view);
 std::optional<Stopping> stopping_from_string(std::string_view);
+std::optional<Globalization> globalization_from_string(std::string_view);
 
 inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
                                                ProblemKind::rigid_body};
@@ -42,5 +48,7 @@ inline constexpr Differential kAllDifferentials[] = {Differential::finite_differ
 inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Integrator::dirk_cg2};
 inline constexpr LinearSolver kAllLinearSolvers[] = {LinearSolver::auto_select, LinearSolver::lu, LinearSolver::gmres};
 inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algebra_residual};
+inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,
+                                                       Globalization::trust_region};
 
 }  // namespace lienewton

@@ -21,6 +21,7 @@ void validate(const SolveRequest& req) {
   validate(req.problem);
   validation::check(fields::h, req.h, "h");
   validate(req.solver);
+  check_globalization(req.solver.method, req.solver);
 }
 
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {

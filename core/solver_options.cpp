@@ -1,5 +1,7 @@
 #include "solver_options.hpp"
 
+#include <string>
+
 #include "validation.hpp"
 
 namespace lienewton {
@@ -7,6 +9,12 @@ namespace lienewton {
 void validate(const SolverOptions& options) {
   validation::check(fields::tol, options.tol, "tol");
   validation::check(fields::max_iterations, options.max_iterations, "max_iterations");
+}
+
+void check_globalization(Method method, const SolverOptions& options) {
+  if (method == Method::fixed_point && options.globalization != Globalization::none)
+    validation::unprocessable("globalization", "globalization " + std::string(to_string(options.globalization)) +
+                                                   " needs newton-group or newton-algebra, not fixed-point");
 }
 
 }  // namespace lienewton

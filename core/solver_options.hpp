@@ -13,9 +13,13 @@ struct SolverOptions {
   LinearSolver linear_solver = LinearSolver::auto_select;
   Stopping stopping = Stopping::residual;  // Version 2 and fixed point: ||f(y_n)|| (section 5) or ||f~(v_n)||
   bool include_iterates = false;  // keep every iterate y_n in the trace (solve only; sweeps and steps drop them)
+  // Newton only: none = the paper's full steps; line-search, trust-region (solvers/globalization.hpp)
+  Globalization globalization = Globalization::none;
 };
 
 // Checks tol and max_iterations; throws RequestError naming the field.
 void validate(const SolverOptions& options);
+// A globalization other than none needs a Newton method: 422 naming "globalization" for the fixed point.
+void check_globalization(Method method, const SolverOptions& options);
 
 }  // namespace lienewton

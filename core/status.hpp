@@ -14,6 +14,8 @@ enum class Status {
   singular_differential,  // the q x q Newton system is singular or too badly conditioned to trust
   stagnated,              // residual stopped decreasing at the rounding floor, above tol
   off_branch,             // y = z exp(h g(y)) holds to rounding, but h g(y) has an angle beyond pi
+  local_minimum,          // globalised Newton: ||D^T f|| fell to rounding while ||f|| did not (a stationary
+                          // point of 1/2 ||f||^2 that is no root)
   cancelled,              // the caller's callback asked to stop (client left, deadline passed)
 };
 
@@ -21,6 +23,6 @@ std::string_view to_string(Status status);
 std::optional<Status> status_from_string(std::string_view name);
 inline constexpr Status kAllStatuses[] = {
     Status::converged, Status::max_iterations, Status::diverged,  Status::non_finite, Status::left_log_domain,
-    Status::singular_differential, Status::stagnated, Status::off_branch, Status::cancelled};
+    Status::singular_differential, Status::stagnated, Status::off_branch, Status::local_minimum, Status::cancelled};
 
 }  // namespace lienewton

@@ -60,6 +60,7 @@ void validate(const SweepRequest& req) {
   for (int n : req.n) validate(at_dimension(req.problem, n));
   for (double h : req.h) validation::check(fields::h, h, "h");
   validate(req.solver);
+  for (Method m : req.methods) check_globalization(m, req.solver);
   if (req.methods.size() * req.n.size() * req.h.size() > kMaxCells)
     validation::invalid("h", "the grid has more than " + std::to_string(kMaxCells) + " cells");
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");

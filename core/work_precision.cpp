@@ -66,6 +66,7 @@ void validate(const WorkPrecisionRequest& req) {
   if (req.choices.size() * hs.size() > kMaxRuns)
     validation::invalid("h", "choices x h must be at most " + std::to_string(kMaxRuns) + " runs");
   for (double h : hs) validate(run_request(req, req.choices.front(), h));
+  for (const WorkPrecisionChoice& c : req.choices) check_globalization(c.method, req.solver);
 }
 
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {

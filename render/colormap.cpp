@@ -36,6 +36,7 @@ Color status_color(Status status) {
     case Status::singular_differential: return {140, 86, 75, 255}; // brown
     case Status::stagnated: return {158, 218, 229, 255};           // pale cyan
     case Status::off_branch: return {247, 182, 210, 255};          // pink
+    case Status::local_minimum: return {188, 189, 34, 255};        // olive
     case Status::cancelled: return {120, 120, 120, 255};           // mid gray: not computed
   }
   return kNoValueColor;

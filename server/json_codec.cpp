@@ -194,6 +194,8 @@ void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s
   if (auto x = f["linear_solver"])
     s.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
   if (auto x = f["stopping"]) s.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
+  if (auto x = f["globalization"])
+    s.globalization = read_enum(*x, "globalization", globalization_from_string, kAllGlobalizations);
   if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
 }
 
@@ -247,7 +249,7 @@ json parse_body(std::string_view text) {
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
-                      "include_iterates", "rigid_body", "linear_solver", "stopping"});
+                      "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization"});
   SolveRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -257,7 +259,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver", "threads", "shard"});
+                      "stopping", "linear_solver", "threads", "shard", "globalization"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -291,7 +293,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
-                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver"});
+                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization"});
   IntegrateRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -307,7 +309,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping", "linear_solver"});
+                      "stopping", "linear_solver", "globalization"});
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -414,6 +416,9 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"seconds", finite_or_null(t.seconds)},
          {"cpu_seconds", finite_or_null(t.cpu_seconds)}};
   if (t.algebra_residual) j["algebra_residual"] = finite_or_null(*t.algebra_residual);
+  if (!t.step_kind.empty()) j["step_kind"] = t.step_kind;
+  if (t.step_length) j["step_length"] = finite_or_null(*t.step_length);
+  if (t.trust_radius) j["trust_radius"] = finite_or_null(*t.trust_radius);
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;
 }

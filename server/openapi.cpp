@@ -61,6 +61,12 @@ json schemas() {
                               "||log(z^-1 y_n) - h g(y_n)|| <= tol as in the paper's section 5; algebra-residual on "
                               "||f~(v_n)|| (3.21), the test Version 2 would normally use. Version 1 always uses ||f(y_n)||");
   stopping["default"] = "residual";
+  json globalization = enum_schema(
+      kAllGlobalizations,
+      "Newton only (422 for fixed-point): none = the paper's full steps; line-search = Armijo backtracking on "
+      "1/2 ||f||^2 along y exp(alpha u) (Version 1) or v + alpha u (Version 2), Levenberg-Marquardt "
+      "(D^T D + mu I) u = -D^T f when Newton's step fails; trust-region = dogleg on 1/2 ||f + D s||^2");
+  globalization["default"] = "none";
   const json status = enum_schema(kAllStatuses, "how the solve ended");
   const json h = schema_of(fields::h);
   const json n = schema_of(fields::n);
@@ -79,7 +85,7 @@ json schemas() {
                               {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
                               {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
+                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -89,6 +95,10 @@ json schemas() {
                             {"seconds", nullable_number("wall time since the solve started")},
                             {"cpu_seconds", nullable_number("solver CPU time so far: the solving thread's CPU time, less what "
                                                             "streaming the records cost (as work-precision times its runs)")},
+                            {"step_kind", json{{"type", "string"}, {"enum", {"newton", "levenberg-marquardt", "dogleg", "cauchy"}},
+                                               {"description", "globalised Newton only: how u_{n-1} was found"}}},
+                            {"step_length", nullable_number("line search only: the accepted alpha of y_{n-1} exp(alpha u)")},
+                            {"trust_radius", nullable_number("trust region only: the radius u_{n-1} was taken in")},
                             {"y", matrix("iterate, only with include_iterates")}};
   s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds", "cpu_seconds"}, false);
   s["SolveResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"iterations", integer("iterations done")},
@@ -111,7 +121,7 @@ json schemas() {
   s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
-                              {"linear_solver", linear_solver}, {"stopping", stopping},
+                              {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization},
                               {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
                                                {"description", "threads of this sweep (0: all cores)"}}},
                               {"shard", object({{"index", integer("this part, 0 <= index < count")},
@@ -131,7 +141,7 @@ json schemas() {
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
-                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
+                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -147,7 +157,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}});
+                                      {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

@@ -80,6 +80,8 @@ Words words(Status s) {
     case Status::singular_differential: return {"singular differential", "singular", "singular Newton system"};
     case Status::stagnated: return {"stagnated", "stagnated", "stagnated at the rounding floor"};
     case Status::off_branch: return {"off branch", "off branch", "solved, but h g(y) beyond angle \u03c0 (off branch)"};
+    case Status::local_minimum:
+      return {"local minimum", "local min", "stationary point of \u00bd\u2016f\u2016\u00b2 that is no root (globalised)"};
     case Status::cancelled: return {"cancelled", "cancelled", "cancelled, not computed"};
   }
   return {};

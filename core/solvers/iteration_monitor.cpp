@@ -120,6 +120,8 @@ std::string reason_for(Status status, const SolveResult& r) {
     case Status::off_branch:
       return "y solves y = z exp(h g(y)) to rounding, but h g(y) has a rotation angle beyond pi, so "
              "log(z^-1 y) != h g(y) and ||f(y)|| = " + format_number(r.residual);
+    case Status::local_minimum:
+      return "a stationary point of 1/2 ||f||^2 that is no root: ||f(y)|| = " + format_number(r.residual) + at;
     case Status::cancelled: return "cancelled by the caller";
   }
   return "unknown";

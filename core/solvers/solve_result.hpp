@@ -23,6 +23,11 @@ struct TraceRecord {
   double seconds = 0;              // wall time since the solve started
   double cpu_seconds = 0;          // the solver's own CPU time so far (thread CPU time, callbacks excluded)
   Eigen::MatrixXd y;               // y_n when include_iterates, else empty
+  // Globalised Newton only (solvers/globalization.hpp): how u_{n-1} was found ("newton", "levenberg-marquardt",
+  // "dogleg", "cauchy"), the accepted line-search length alpha, the trust radius the step was taken in.
+  std::string step_kind;
+  std::optional<double> step_length;
+  std::optional<double> trust_radius;
   double distance_to_pi() const { return std::numbers::pi - angle; }
 };
 

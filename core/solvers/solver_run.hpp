@@ -11,12 +11,20 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
 #include "solve_result.hpp"
 
 namespace lienewton {
+
+// How a globalised iteration found the step to the iterate being recorded (solvers/globalization.hpp).
+struct StepInfo {
+  std::string_view kind;              // empty: a plain full step
+  std::optional<double> length;       // line search: the accepted alpha
+  std::optional<double> radius;       // trust region: the radius the step was taken in
+};
 
 template <LieGroup G>
 class SolverRun {
@@ -28,7 +36,7 @@ class SolverRun {
       : eq_(eq), options_(options), krylov_(krylov), monitor_(options, callback) {}
 
   // Records iterate y_n = p.y; the status to stop with, or nothing to go on.
-  std::optional<Status> record(const Point& p, double step) {
+  std::optional<Status> record(const Point& p, double step, const StepInfo& info = {}) {
     if (!kappa_) kappa_ = eq_.conditioning(p.y);  // at y_0 = z: the floor's conditioning term
     const bool algebra = p.algebra_residual.has_value();
     const double driven = p.algebra_residual.value_or(p.residual);
@@ -41,12 +49,17 @@ class SolverRun {
     rec.angle = p.angle;
     rec.orthogonality_error = eq_.group().defect(p.y);
     if (options_.include_iterates) rec.y = p.y;
+    rec.step_kind = info.kind;
+    rec.step_length = info.length;
+    rec.trust_radius = info.radius;
     const Iterate it{p.y, monitor_.iteration(), p.residual, p.algebra_residual, driven, floor};
     if (!(best_.driven <= driven)) best_ = it;
     last_ = it;
     return monitor_.record(std::move(rec), {stop, driven, algebra ? "||f~(v)||" : "||f(y)||", floor});
   }
   void next() { monitor_.next(); }
+  // The rounding floor of the driven residual at the last recorded iterate.
+  double floor() const { return last_.floor; }
   // The iterate about to be recorded was replaced by its polar factor (its defect had drifted).
   void reorthogonalised() { ++reorthogonalisations_; }
   // Version 2's algebra iterate v grew past kDivergenceBound.

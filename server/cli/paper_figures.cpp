@@ -50,6 +50,7 @@ char status_code(Status status) {
     case Status::singular_differential: return 'X';
     case Status::stagnated: return 'S';
     case Status::off_branch: return 'B';
+    case Status::local_minimum: return 'P';
     case Status::cancelled: return '-';
   }
   return '?';
@@ -76,7 +77,7 @@ std::string figure_tables(const SweepResult& sweep, ProblemKind problem, Differe
     out << '\n';
   }
   out << "Codes: M max_iterations, D diverged, F non_finite, L left_log_domain, X singular_differential, "
-         "S stagnated, B off_branch.\n\n";
+         "S stagnated, B off_branch, P local_minimum.\n\n";
   return out.str();
 }
 

@@ -14,46 +14,12 @@
 #include "core/groups/son.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
+#include "residual_oracle.hpp"
 
 namespace lienewton {
 namespace {
 
 using Eigen::MatrixXd;
-
-// The paper's fields (section 5), as matrices.
-MatrixXd oracle_g(ProblemKind problem, const MatrixXd& y) {
-  const Eigen::Index n = y.rows();
-  MatrixXd out = MatrixXd::Zero(n, n);
-  if (problem == ProblemKind::paper_linear) {
-    for (Eigen::Index i = 0; i + 1 < n; ++i) {
-      out(i, i + 1) = y(i, i + 1);
-      out(i + 1, i) = -y(i, i + 1);
-    }
-    return out;
-  }
-  MatrixXd s(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j) s(i, j) = std::sin(y(i, j));
-  const MatrixXd u = s * (2.0 * y - 5.0 * y * y);
-  return u - u.transpose();
-}
-
-struct Oracle {
-  double residual;  // ||f(y)|| in the paper's coordinates: ||F||_F / sqrt(2)
-  double defect;    // ||y - z expm(h g(y))||_F
-  double angle;     // the largest rotation angle of h g(y) (its spectral norm)
-};
-
-Oracle oracle(ProblemKind problem, double h, const MatrixXd& z, const MatrixXd& y) {
-  const MatrixXd w = h * oracle_g(problem, y);
-  const MatrixXd zty = z.transpose() * y;
-  const MatrixXd log_zty = zty.log();
-  Oracle o;
-  o.residual = (log_zty - w).norm() / std::sqrt(2.0);
-  o.defect = (y - z * w.exp()).norm();
-  o.angle = Eigen::JacobiSVD<MatrixXd>(w).singularValues()(0);
-  return o;
-}
 
 SolveResult solve_json_like(ProblemKind problem, int n, double h, Method method, Differential d) {
   SolveRequest req;

@@ -1,0 +1,81 @@
+#pragma once
+// Where each Newton version lives and how it moves, so that the globalised iteration (globalization.hpp) is
+// written once for both:
+//   GroupChart    Version 1 (3.5): iterates y_n on the group, f = f(y) of (3.6), D = df_y, y -> y exp(s);
+//   AlgebraChart  Version 2 (3.20): iterates v_n in the algebra, f = f~(v) of (3.21), D = df~_v, v -> v + s.
+#include <limits>
+
+#include "equation.hpp"
+
+namespace lienewton {
+
+// Per unit of N: an iterate whose ||y^T y - I||_F exceeds this times N is replaced by its polar factor.
+inline constexpr double kReorthogonaliseDefect = 16.0 * std::numeric_limits<double>::epsilon();
+
+template <LieGroup G>
+class GroupChart {
+ public:
+  using Point = typename Equation<G>::Point;
+  using State = typename G::Element;
+  using Vector = typename G::Vector;
+  using Operator = typename G::Operator;
+
+  GroupChart(const Equation<G>& eq, Differential d)
+      : eq_(eq), d_(d),
+        // Difference quotients need f alone, also at y_n: the same log path as in the perturbed points.
+        need_(d == Differential::finite_difference ? Equation<G>::Need::residual : Equation<G>::Need::differential) {}
+
+  const Equation<G>& equation() const { return eq_; }
+  Differential differential() const { return d_; }
+  Point at(const State& y) const { return eq_.at(y, need_); }
+  // (3.5): y exp(s). Long products drift off the group by rounding (a random walk of ~eps per step); the polar
+  // factor puts the iterate back before the drift reaches the floor's scale.
+  State move(const Point& p, const Vector& s, bool& reorthogonalised) const {
+    const G& group = eq_.group();
+    State next = group.times_exp(p.y, s);
+    reorthogonalised = next.allFinite() && group.defect(next) > kReorthogonaliseDefect * group.n();
+    if (reorthogonalised) next = group.project(next);
+    return next;
+  }
+  Operator matrix(const Point& p) const { return eq_.df_matrix(p, d_); }
+  Vector apply(const Point& p, const Vector& w) const { return eq_.df(p, w, d_); }
+  double size(const Point&) const { return 0.0; }  // the group is compact: no iterate can run away
+
+ private:
+  const Equation<G>& eq_;
+  Differential d_;
+  typename Equation<G>::Need need_;
+};
+
+template <LieGroup G>
+class AlgebraChart {
+ public:
+  using Point = typename Equation<G>::Point;
+  using State = typename G::Vector;
+  using Vector = typename G::Vector;
+  using Operator = typename G::Operator;
+
+  AlgebraChart(const Equation<G>& eq, Differential d) : eq_(eq), d_(d) {}
+
+  const Equation<G>& equation() const { return eq_; }
+  Differential differential() const { return d_; }
+  // f~(v) (3.21), and ||f(y)|| at y = z exp(v) as section 5 measures every method (needs log of z^-1 y).
+  Point at(const State& v) const {
+    Point p = eq_.at_algebra(v);
+    eq_.read_group_residual(p);
+    return p;
+  }
+  State move(const Point& p, const Vector& s, bool& reorthogonalised) const {  // (3.20): v + s
+    reorthogonalised = false;
+    return p.v + s;
+  }
+  Operator matrix(const Point& p) const { return eq_.dftilde_matrix(p, d_); }
+  Vector apply(const Point& p, const Vector& w) const { return eq_.dftilde(p, w, d_); }
+  double size(const Point& p) const { return p.v.norm(); }  // ||v||, watched for divergence
+
+ private:
+  const Equation<G>& eq_;
+  Differential d_;
+};
+
+}  // namespace lienewton
