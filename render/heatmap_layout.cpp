@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "render/colormap.hpp"
+#include "render/short_names.hpp"
 
 namespace lienewton::render {
 namespace {
@@ -93,7 +94,7 @@ HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int 
   for (double h : grid.h) h_label_width = std::max(h_label_width, text_width(log2_label(h), TextSize::small));
 
   for (Status status : kAllStatuses) {
-    if (status != Status::converged) l.legend.push_back({std::string(to_string(status)), status_color(status)});
+    if (status != Status::converged) l.legend.push_back({std::string(short_name(status)), status_color(status)});
   }
   if (metric == HeatmapMetric::rate) {
     l.legend.push_back({"no rate", kNoValueColor});

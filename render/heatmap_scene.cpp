@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "render/colormap.hpp"
+#include "render/short_names.hpp"
 
 namespace lienewton::render {
 namespace {
@@ -56,7 +57,7 @@ void draw_colorbar(Canvas& canvas, const HeatmapLayout& l, HeatmapMetric metric,
 void draw_panel_axes(Canvas& canvas, const HeatmapGrid& grid, const HeatmapLayout& l, int panel) {
   const float x0 = float(l.panel_x(panel)), y0 = float(l.top);
   const float x1 = x0 + l.panel_width(), y1 = y0 + l.panel_height();
-  canvas.text(to_string(grid.methods[panel]), 0.5f * (x0 + x1), y0 - 12, TextSize::large, kTextColor, Align::center);
+  canvas.text(std::string(short_name(grid.methods[panel])), 0.5f * (x0 + x1), y0 - 12, TextSize::large, kTextColor, Align::center);
   // Frame just outside the cells so that it never covers one.
   canvas.rect(x0 - 1, y0 - 1, x1 + 1, y0, kAxisColor);
   canvas.rect(x0 - 1, y1, x1 + 1, y1 + 1, kAxisColor);

@@ -29,6 +29,22 @@ std::string_view short_name(Differential differential) {
   return "?";
 }
 
+std::string_view short_name(Status status) {
+  switch (status) {
+    case Status::converged: return "converged";
+    case Status::max_iterations: return "max iterations";
+    case Status::diverged: return "diverged";
+    case Status::non_finite: return "non-finite";
+    case Status::left_log_domain: return "left log domain";
+    case Status::singular_differential: return "singular differential";
+    case Status::stagnated: return "stagnated";
+    case Status::off_branch: return "off branch";
+    case Status::local_minimum: return "local minimum";
+    case Status::cancelled: return "cancelled";
+  }
+  return "?";
+}
+
 std::string series_name(Method method, Differential differential) {
   std::string name(short_name(method));
   if (method != Method::fixed_point) name += ", " + std::string(short_name(differential));

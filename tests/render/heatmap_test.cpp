@@ -7,6 +7,7 @@
 #include "render/colormap.hpp"
 #include "render/heatmap_scene.hpp"
 #include "render/renderer.hpp"
+#include "render/short_names.hpp"
 
 namespace lienewton::render {
 namespace {
@@ -166,6 +167,18 @@ TEST(Heatmap, MetricNamesParse) {
 
 TEST(Heatmap, EmptySweepIsRejected) {
   EXPECT_THROW(testing::shared_renderer().heatmap_png(SweepResult{}, HeatmapOptions{}), std::invalid_argument);
+}
+
+// The PNG speaks the dashboard's words, not the API's: no "max_iterations" or "newton-group" in a legend.
+TEST(Heatmap, LegendAndTitlesUseWordsNotApiNames) {
+  for (Status s : kAllStatuses) {
+    const std::string word(short_name(s));
+    EXPECT_EQ(word.find('_'), std::string::npos) << word;
+    EXPECT_FALSE(word.empty());
+    for (char ch : word) EXPECT_LT(static_cast<unsigned char>(ch), 128) << word;  // the render font is ASCII
+  }
+  EXPECT_EQ(short_name(Status::max_iterations), "max iterations");
+  EXPECT_EQ(short_name(Method::newton_group), "Newton group");
 }
 
 }  // namespace
