@@ -11,7 +11,8 @@ namespace {
 template <class G>
 SolveResult solve_on(const G& group, const SolveRequest& req, const TraceCallback& cb) {
   const auto field = make_field(group, req.problem.kind, req.problem.rigid_body);
-  const auto eq = Equation<G>::implicit_euler(group, typename G::Element(req.problem.start()), req.h, *field);
+  auto eq = Equation<G>::implicit_euler(group, typename G::Element(req.problem.start()), req.h, *field);
+  if (req.y0) eq.start_at(typename G::Element(*req.y0));
   return run_method(req.solver.method, eq, req.solver, cb);
 }
 
@@ -22,6 +23,7 @@ void validate(const SolveRequest& req) {
   validation::check(fields::h, req.h, "h");
   validate(req.solver);
   check_globalization(req.solver.method, req.solver);
+  if (req.y0) validation::check_start_guess(*req.y0, req.problem.start());
 }
 
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {

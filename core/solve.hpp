@@ -11,6 +11,7 @@ struct SolveRequest {
   ProblemSpec problem{};
   SolverOptions solver{};
   double h = 0.5;
+  std::optional<Eigen::MatrixXd> y0{};  // where the iteration starts; when absent, z (as the paper); z stays the equation's
 };
 
 // Validates the request (throws RequestError naming the field) and solves it.

@@ -31,4 +31,15 @@ void check_start_point(const std::optional<Eigen::MatrixXd>& z, int n) {
   if (!(orth <= 1e-10)) unprocessable("z", "z must be orthogonal to 1e-10 (||z^T z - I||_F = " + std::to_string(orth) + ")");
 }
 
+void check_start_guess(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) {
+  const auto n = z.rows();
+  if (y0.rows() != n || y0.cols() != n) invalid("y0", "y0 must be an n x n array of rows");
+  if (!y0.allFinite()) invalid("y0", "y0 must have finite entries");
+  const double orth = (y0.transpose() * y0 - Eigen::MatrixXd::Identity(n, n)).norm();
+  if (!(orth <= 1e-10))
+    unprocessable("y0", "y0 must be orthogonal to 1e-10 (||y0^T y0 - I||_F = " + std::to_string(orth) + ")");
+  if (y0.determinant() * z.determinant() < 0)
+    unprocessable("y0", "y0 must lie in the component of z (det y0 = det z): z^-1 y0 must be a rotation");
+}
+
 }  // namespace lienewton::validation

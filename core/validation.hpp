@@ -24,5 +24,8 @@ void check(const fields::IntegerField& field, long long x, const std::string& pa
 void check_problem_dimension(ProblemKind problem, int n, const std::string& field = "n");
 void check_rigid_body(const RigidBodyParams& params);
 void check_start_point(const std::optional<Eigen::MatrixXd>& z, int n);
+// y0, the iteration's start: n x n, finite, orthogonal to 1e-10 and in the component of z (det y0 = det z), so
+// that z^-1 y0 is a rotation the iteration can reach. Throws RequestError naming "y0".
+void check_start_guess(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z);
 
 }  // namespace lienewton::validation

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "render/basin_scene.hpp"
 #include "render/camera.hpp"
 #include "render/frames_scene.hpp"
 #include "render/gl_context.hpp"
@@ -131,6 +132,17 @@ std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& s
   Canvas canvas(layout.width, layout.height, kWhite);
   draw_heatmap(canvas, grid, layout, options.metric);
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
+  return encode_png(rgb, layout.width, layout.height, RowOrder::bottom_up);
+}
+
+std::vector<unsigned char> Renderer::basins_png(const lienewton::BasinResult& map, int width, int height) {
+  validate_size("width", width, true);
+  validate_size("height", height, true);
+  const BasinLayout layout = layout_basins(map, width, height);
+  Canvas canvas(layout.width, layout.height, kWhite);
+  draw_basin_decorations(canvas, map, layout);
+  std::vector<std::uint8_t> rgb = pool_->paint(canvas);
+  fill_basin_panels(rgb, map, layout);
   return encode_png(rgb, layout.width, layout.height, RowOrder::bottom_up);
 }
 

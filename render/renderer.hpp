@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/basins.hpp"
 #include "core/sweep.hpp"
 #include "render/figure.hpp"
 #include "render/options.hpp"
@@ -29,6 +30,8 @@ class Renderer {
   std::vector<unsigned char> frames_png(const std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start,
                                         const FramesOptions& options);
   std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options);
+  // Basin map (basin_scene.hpp); width/height 0 choose the size. Throws std::invalid_argument for an empty map.
+  std::vector<unsigned char> basins_png(const lienewton::BasinResult& map, int width, int height);
   // Line-chart figures (work_precision_scene.hpp, residuals_scene.hpp); throws as layout_line_chart does.
   std::vector<unsigned char> figure_png(const Figure& figure);
 

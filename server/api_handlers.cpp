@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/basins.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -166,6 +167,33 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
   };
 }
 
+// Streams announce the grid (axis, directions, z), then one record per row in row order, then the summary; the
+// plain answer is the whole map.
+ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
+  BasinRequest request = basin_request_from_json(body, options_.limits);
+  validate(request);
+  check_output(request, options_.output);
+  return [this, request](const Emit& emit, const CancellationToken& token) {
+    bool stopped = emit && !emit("grid", to_json(basin_grid(request)));
+    int rows = 0;
+    const auto throw_with_count = [&] {
+      throw_stopped(token, ": " + std::to_string(rows) + " of " + std::to_string(request.size) + " rows finished");
+    };
+    BasinResult result;
+    if (!stopped) {
+      result = lienewton::basins(request, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
+        progress(rows++);
+        for (const auto& pixels : row.pixels)
+          for (const BasinPixel& p : pixels) metrics_.solve_finished(std::string(to_string(p.status)), p.iterations);
+        if (emit && !emit("row", to_json(row, roots, request.methods))) return !(stopped = true);
+        return !(stopped = token.cancelled());
+      });
+    }
+    if (stopped || !result.complete || token.reason() != CancelReason::none) throw_with_count();
+    return emit ? basin_summary_json(result) : to_json(result, request.methods);
+  };
+}
+
 ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
   IntegrateRequest request = integrate_request_from_json(body, options_.limits);
   validate(request);
@@ -205,6 +233,9 @@ HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
   return serve(req, solve_job(request_json(req)), true, options_.request_timeout);
 }
 HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, sweep_job(request_json(req)), false, options_.sweep_timeout); }
+HttpResponse ApiHandlers::basins(const HttpRequest& req) {
+  return serve(req, basins_job(request_json(req)), false, options_.sweep_timeout);
+}
 HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
   return serve(req, integrate_job(request_json(req)), false, options_.request_timeout);
 }
@@ -224,6 +255,10 @@ HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
     }
   }
   return render(req, request_json(req, {"methods", "n", "h"}), service::render_heatmap, options_.sweep_timeout);
+}
+// The GET form of a basin map: methods, b1 and b2 are lists.
+HttpResponse ApiHandlers::render_basins(const HttpRequest& req) {
+  return render(req, request_json(req, {"methods", "b1", "b2"}), service::render_basins, options_.sweep_timeout);
 }
 // The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
 HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {

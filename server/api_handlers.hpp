@@ -29,10 +29,12 @@ class ApiHandlers {
   HttpResponse solve(const HttpRequest& req);
   HttpResponse solve_events(const HttpRequest& req);
   HttpResponse sweep(const HttpRequest& req);
+  HttpResponse basins(const HttpRequest& req);
   HttpResponse integrate(const HttpRequest& req);
   HttpResponse work_precision(const HttpRequest& req);
   HttpResponse render_frames(const HttpRequest& req);
   HttpResponse render_heatmap(const HttpRequest& req);
+  HttpResponse render_basins(const HttpRequest& req);
   HttpResponse render_work_precision(const HttpRequest& req);
   HttpResponse render_residuals(const HttpRequest& req);
   HttpResponse livez(const HttpRequest& req);
@@ -58,6 +60,7 @@ class ApiHandlers {
 
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
+  Job basins_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
   HttpResponse serve(const HttpRequest& req, Job job, bool sse, double budget_seconds);

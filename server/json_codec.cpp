@@ -248,12 +248,13 @@ json parse_body(std::string_view text) {
 }
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
+  Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
                       "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization"});
   SolveRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
   if (auto x = f["h"]) r.h = read_h(*x, "h");
+  if (auto x = f["y0"]) r.y0 = read_matrix(*x, "y0", r.problem.n);
   return r;
 }
 
@@ -345,6 +346,49 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
   return r;
 }
 
+// A solve request without method (and without y0 and include_iterates: every pixel has its own start and keeps
+// no iterates) plus the plane: methods, size, r, b1, b2.
+BasinRequest basin_request_from_json(const json& body, const Limits& limits) {
+  if (!body.is_object()) fail("", "the request must be a JSON object");
+  json equation = body;
+  const auto take = [&](const char* name) {
+    auto it = equation.find(name);
+    if (it == equation.end() || it->is_null()) return json();
+    json v = *it;
+    equation.erase(it);
+    return v;
+  };
+  for (const char* name : {"method", "y0", "include_iterates"}) {
+    if (body.contains(name))
+      throw FieldError("unknown_field", name, std::string("unknown field ") + name + " (a basin map runs every one of "
+                                              "methods from every start of its grid)");
+  }
+  BasinRequest r;
+  const json methods = take("methods"), size = take("size"), radius = take("r");
+  const json b[2] = {take("b1"), take("b2")};
+  r.solve = solve_request_from_json(equation, limits);
+  if (!methods.is_null()) {
+    r.methods.clear();
+    for (const auto& m : read_array(methods, "methods", 1, std::size(kAllMethods), "method names"))
+      r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
+  }
+  // Any integer is read: the core refuses a size beyond its largest map (422), the server's output cap with 413.
+  if (!size.is_null()) r.size = read_int(size, "size", 1, INT_MAX);
+  if (!radius.is_null()) r.radius = read_positive(radius, "r", 100, "100");
+  const std::size_t dim = static_cast<std::size_t>(r.solve.problem.n) * static_cast<std::size_t>(r.solve.problem.n - 1) / 2;
+  for (int k = 0; k < 2; ++k) {
+    if (b[k].is_null()) continue;
+    const std::string name = k == 0 ? "b1" : "b2";
+    const std::string message = name + " must be an array of " + std::to_string(dim) +
+                                " finite numbers (coordinates in the algebra, n(n-1)/2 of them)";
+    if (!b[k].is_array() || b[k].size() != dim) fail(name, message);
+    Eigen::VectorXd v(static_cast<Eigen::Index>(dim));
+    for (std::size_t i = 0; i < dim; ++i) v[static_cast<Eigen::Index>(i)] = read_number(b[k][i], name, message);
+    (k == 0 ? r.b1 : r.b2) = v;
+  }
+  return r;
+}
+
 SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
   Fields f(body, "sweep.", {"cells", "seconds", "shard"});
   SweepResult r;
@@ -394,6 +438,78 @@ SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
   }
   if (auto v = f["seconds"]) r.seconds = read_number(*v, "sweep.seconds", "sweep.seconds must be a finite number");
   return r;
+}
+
+json to_json(const BasinGrid& g) {
+  json axis = json::array();
+  for (double v : g.axis) axis.push_back(finite_or_null(v));
+  auto vector = [](const Eigen::VectorXd& v) {
+    json out = json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(finite_or_null(v[i]));
+    return out;
+  };
+  return json{{"a", axis}, {"b", axis}, {"r", finite_or_null(g.radius)}, {"b1", vector(g.b1)}, {"b2", vector(g.b2)},
+              {"z", matrix_to_json(g.z)}};
+}
+
+json to_json(const BasinRoot& root) {
+  return json{{"id", root.id},
+              {"y", matrix_to_json(root.y)},
+              {"residual", finite_or_null(root.residual)},
+              {"distance_from_z", finite_or_null(root.distance_from_z)},
+              {"hg_angle", finite_or_null(root.hg_angle)}};
+}
+
+json to_json(const BasinRow& row, const std::vector<BasinRoot>& roots, const std::vector<Method>& methods) {
+  json per_method = json::array();
+  for (std::size_t m = 0; m < row.pixels.size(); ++m) {
+    json status = json::array(), root = json::array(), iterations = json::array();
+    for (const BasinPixel& p : row.pixels[m]) {
+      status.push_back(std::string(to_string(p.status)));
+      root.push_back(p.root >= 0 ? json(p.root) : json(nullptr));
+      iterations.push_back(p.iterations);
+    }
+    per_method.push_back(json{{"method", std::string(to_string(methods[m]))},
+                              {"status", std::move(status)},
+                              {"root", std::move(root)},
+                              {"iterations", std::move(iterations)}});
+  }
+  json new_roots = json::array();
+  for (int id : row.new_roots) new_roots.push_back(to_json(roots[static_cast<std::size_t>(id)]));
+  return json{{"row", row.row}, {"b", finite_or_null(row.b)}, {"methods", std::move(per_method)},
+              {"new_roots", std::move(new_roots)}};
+}
+
+json basin_summary_json(const BasinResult& map) {
+  json roots = json::array();
+  for (const BasinRoot& r : map.roots) roots.push_back(to_json(r));
+  json methods = json::array();
+  for (const BasinMethodSummary& s : map.methods) {
+    json statuses = json::object();
+    for (std::size_t i = 0; i < std::size(kAllStatuses); ++i)
+      if (s.status_counts[i] > 0) statuses[std::string(to_string(kAllStatuses[i]))] = s.status_counts[i];
+    methods.push_back(json{{"method", std::string(to_string(s.method))},
+                           {"pixels", s.pixels},
+                           {"converged", s.converged},
+                           {"converged_fraction", finite_or_null(s.converged_fraction)},
+                           {"basins", s.basins},
+                           {"mean_iterations", optional_number(s.mean_iterations)},
+                           {"statuses", std::move(statuses)}});
+  }
+  return json{{"roots", std::move(roots)}, {"methods", std::move(methods)}, {"complete", map.complete},
+              {"seconds", finite_or_null(map.seconds)}};
+}
+
+json to_json(const BasinResult& map, const std::vector<Method>& methods) {
+  json rows = json::array();
+  for (const BasinRow& row : map.rows) {
+    json r = to_json(row, map.roots, methods);
+    r.erase("new_roots");  // the summary lists every root
+    rows.push_back(std::move(r));
+  }
+  json out{{"grid", to_json(map.grid)}, {"rows", std::move(rows)}};
+  out.update(basin_summary_json(map));
+  return out;
 }
 
 json matrix_to_json(const Eigen::MatrixXd& m) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/basins.hpp"
 #include "core/integrate.hpp"
 #include "core/request_error.hpp"
 #include "core/solve.hpp"
@@ -50,6 +51,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits);
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits);
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits);
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits);
+BasinRequest basin_request_from_json(const json& body, const Limits& limits);
 // A sweep result as produced by to_json(SweepResult), read back (the heatmap accepts one).
 SweepResult sweep_result_from_json(const json& body, const Limits& limits);
 
@@ -62,6 +64,14 @@ json to_json(const IntegrateResult& result);
 json to_json(const WorkPrecisionChoice& choice);
 json to_json(const WorkPrecisionSeries& series);
 json to_json(const WorkPrecisionResult& result);
+json to_json(const BasinGrid& grid);
+json to_json(const BasinRoot& root);
+// A row with the roots it met first (new_roots, full objects): a stream reader can colour it at once.
+json to_json(const BasinRow& row, const std::vector<BasinRoot>& roots, const std::vector<Method>& methods);
+// The summary: roots, per method converged fraction, basins, mean iterations and status counts.
+json basin_summary_json(const BasinResult& map);
+// The whole map: {"grid", "rows", then the summary's fields}.
+json to_json(const BasinResult& map, const std::vector<Method>& methods);
 json matrix_to_json(const Eigen::MatrixXd& m);
 
 json error_body(std::string_view code, std::string_view field, std::string_view message);

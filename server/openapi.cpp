@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/basins.hpp"
 #include "core/options.hpp"
 #include "core/status.hpp"
 #include "core/fields.hpp"
@@ -84,6 +85,9 @@ json schemas() {
   s["SolveRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"method", method}, {"differential", differential},
                               {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
                               {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
+                              {"y0", matrix("starting guess of the iteration (default: z, as the paper): N x N rows, "
+                                            "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
+                                            "equation's z")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
                               {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
   const json trace_props = {{"iteration", integer("n")},
@@ -137,6 +141,43 @@ json schemas() {
                                                {"cell_indices", array_of(integer("grid position of each cell"))}},
                                               {"index", "count", "grid_cells", "cell_indices"})}},
                             {"cells", "seconds"}, false);
+  const json coordinates = json{{"type", "array"}, {"items", {{"type", "number"}}},
+                                 {"description", "n(n-1)/2 coordinates in the algebra (basis E_ij - E_ji, i < j row-major); "
+                                                 "normalised before use"}};
+  s["BasinRequest"] = object({{"problem", problem}, {"n", json{{"type", "integer"}, {"minimum", 3}, {"description", "matrix size N (at least 3: the plane needs two directions)"}}},
+                              {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
+                              {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
+                              {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping},
+                              {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
+                                            {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
+                                                            "beyond --max-output-values numbers: 413)"}}},
+                              {"r", json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 100},
+                                         {"default", 3.141592653589793}, {"description", "(a, b) in [-r, r]^2"}}},
+                              {"b1", coordinates}, {"b2", coordinates}});
+  const json pixel_lists = object({{"method", method}, {"status", array_of(status)},
+                                   {"root", array_of(json{{"type", "integer"}, {"nullable", true}})},
+                                   {"iterations", array_of(json{{"type", "integer"}})}}, {}, false);
+  s["BasinRoot"] = object({{"id", integer("root number, in pixel order of first arrival")},
+                           {"y", matrix("the root (the first converged y of its cluster)")},
+                           {"residual", nullable_number("||f(y)||")},
+                           {"distance_from_z", nullable_number("||log(z^-1 y)||")},
+                           {"hg_angle", nullable_number("largest rotation angle of h g(y)")}}, {}, false);
+  s["BasinGrid"] = object({{"a", array_of(number("pixel-centre a of each column"))},
+                           {"b", array_of(number("pixel-centre b of each row"))}, {"r", number("r")},
+                           {"b1", array_of(number(""))}, {"b2", array_of(number(""))},
+                           {"z", matrix("the equation's z (its orthogonal polar factor)")}}, {}, false);
+  s["BasinRow"] = object({{"row", integer("row index (b ascending)")}, {"b", number("")},
+                          {"methods", array_of(pixel_lists)},
+                          {"new_roots", array_of(ref("BasinRoot"))}}, {}, false);
+  s["BasinResult"] = object(
+      {{"grid", ref("BasinGrid")}, {"rows", array_of(ref("BasinRow"))}, {"roots", array_of(ref("BasinRoot"))},
+       {"methods", array_of(object({{"method", method}, {"pixels", integer("")}, {"converged", integer("")},
+                                    {"converged_fraction", number("")}, {"basins", integer("distinct roots reached")},
+                                    {"mean_iterations", nullable_number("over converged pixels")},
+                                    {"statuses", json{{"type", "object"}, {"additionalProperties", {{"type", "integer"}}}}}},
+                                   {}, false))},
+       {"complete", json{{"type", "boolean"}}}, {"seconds", number("wall time")}},
+      {"grid", "rows", "roots", "methods", "complete", "seconds"}, false);
   s["IntegrateRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"t_end", t_end}, {"integrator", integrator},
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
@@ -168,11 +209,12 @@ json schemas() {
                                   {}, false))},
        {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);
   s["SolveStreamRecord"] = json{
-      {"description", "One NDJSON line / SSE data field. type is iteration|cell|step|series for progress records (the "
-                      "fields of TraceRecord, SweepCell, StepRecord or a series), then exactly one terminal record: "
+      {"description", "One NDJSON line / SSE data field. type is iteration|cell|step|series|grid|row for progress records "
+                      "(the fields of TraceRecord, SweepCell, StepRecord, a series, BasinGrid or BasinRow; a basin "
+                      "stream's result is the summary: BasinResult without grid and rows), then exactly one terminal record: "
                       "result (the fields of the non-streamed result) or error (with an error object)."},
       {"type", "object"},
-      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "cell", "step", "series", "result", "error"}}}},
+      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "cell", "step", "series", "grid", "row", "result", "error"}}}},
                       {"error", ref("ErrorDetail")}}},
       {"required", {"type"}}};
   s["RenderFramesRequest"] = json{
@@ -188,6 +230,10 @@ json schemas() {
       {"properties", {{"sweep", ref("SweepResult")},
                       {"metric", json{{"type", "string"}, {"enum", {"iterations", "rate", "residual"}}}},
                       {"width", width}, {"height", width}}}};
+  s["RenderBasinsRequest"] = json{
+      {"description", "A BasinRequest plus width/height (0 or absent: automatic)."},
+      {"type", "object"},
+      {"properties", {{"width", width}, {"height", width}}}};
   s["RenderWorkPrecisionRequest"] = json{
       {"description", "A WorkPrecisionRequest plus width/height (default 960 x 640). Each choice is one line through "
                       "its converged h (largest first), styled as x-lienewton.series_styles in order; the legend gives "
@@ -242,6 +288,7 @@ json query_parameters(const json& all_schemas, const std::string& schema) {
   add(all_schemas[schema]);
   if (schema == "RenderFramesRequest") add(all_schemas["SolveRequest"]);
   if (schema == "RenderHeatmapRequest") add(all_schemas["SweepRequest"]);
+  if (schema == "RenderBasinsRequest") add(all_schemas["BasinRequest"]);
   if (schema == "RenderWorkPrecisionRequest") add(all_schemas["WorkPrecisionRequest"]);
   if (schema == "RenderResidualsRequest") {
     json solve = all_schemas["SolveRequest"];

@@ -4,6 +4,7 @@
 
 #include "core/options.hpp"
 #include "core/status.hpp"
+#include "render/basin_scene.hpp"
 #include "render/colormap.hpp"
 #include "render/heatmap_scene.hpp"
 #include "render/options.hpp"
@@ -139,6 +140,14 @@ json series_styles() {
   return styles;
 }
 
+// Root k of a basin map is drawn in entry k (mod the length); pixels mix in black up to basin_darkest with
+// iterations, as the PNG does.
+json basin_root_colors() {
+  json colors = json::array();
+  for (int k = 0; k < render::kDistinctRootColors; ++k) colors.push_back(css(render::root_color(k)));
+  return colors;
+}
+
 }  // namespace
 
 json openapi_labels() {
@@ -155,6 +164,7 @@ json openapi_labels() {
             {"status", statuses},
             {"heatmap_metric", entries(render::kAllHeatmapMetrics)}}},
           {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()},
+                      {"basin_roots", basin_root_colors()}, {"basin_darkest", render::kBasinDarkest},
                       {"rate_range", {render::kRateColorLo, render::kRateColorHi}},
                       {"rate_outlier_dot", css(render::kOutlierDotColor)}}},
           {"series_styles", series_styles()}};

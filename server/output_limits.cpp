@@ -12,6 +12,7 @@ namespace {
 // energy; method, n, h, status, reason, iterations, rate, residual, seconds).
 constexpr double kStepValues = 6;
 constexpr double kCellValues = 9;
+constexpr double kPixelValues = 3;  // a basin pixel: status, root, iterations
 
 void refuse_beyond(double values, const OutputLimits& limits, const char* field, const std::string& what) {
   if (values <= static_cast<double>(limits.max_values)) return;
@@ -39,6 +40,12 @@ void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
 void check_output(const SweepRequest& r, const OutputLimits& limits) {
   const double cells = static_cast<double>(r.methods.size()) * static_cast<double>(r.n.size()) * static_cast<double>(r.h.size());
   refuse_beyond(cells * kCellValues, limits, "h", "this sweep grid");
+}
+
+void check_output(const BasinRequest& r, const OutputLimits& limits) {
+  const double pixels = static_cast<double>(r.size) * r.size * static_cast<double>(r.methods.size());
+  refuse_beyond(pixels * kPixelValues, limits, "size", "a " + std::to_string(r.size) + " x " + std::to_string(r.size) +
+                                                          " basin map of " + std::to_string(r.methods.size()) + " methods");
 }
 
 void check_image_pixels(const json& body, const OutputLimits& limits) {

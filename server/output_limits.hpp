@@ -4,6 +4,7 @@
 // request is refused with 413 "output_too_large" naming the field to change.
 #include <cstddef>
 
+#include "core/basins.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -19,6 +20,7 @@ struct OutputLimits {
 void check_output(const SolveRequest& request, const OutputLimits& limits);
 void check_output(const IntegrateRequest& request, const OutputLimits& limits);
 void check_output(const SweepRequest& request, const OutputLimits& limits);
+void check_output(const BasinRequest& request, const OutputLimits& limits);
 // width x height of a render request, where both are given as integers (else the parser judges them).
 void check_image_pixels(const json& body, const OutputLimits& limits);
 

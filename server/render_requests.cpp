@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/basins.hpp"
 #include "core/groups/with_group.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
@@ -200,6 +201,32 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
   });
   if (stopped) throw RenderCancelled{};
   return renderer.heatmap_png(result, options);
+}
+
+std::vector<unsigned char> render_basins(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const int width = take_int(request, "width", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  const int height = take_int(request, "height", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  BasinRequest r = basin_request_from_json(request, limits);
+  validate(r);
+  before_work(hooks);
+  int index = 0;
+  bool stopped = false;
+  const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
+    if (hooks.on_cell) {  // every pixel is a solve, counted in the metrics as a sweep cell is
+      SweepCell counted;
+      for (const auto& pixels : row.pixels)
+        for (const BasinPixel& p : pixels) {
+          counted.status = p.status;
+          counted.iterations = p.iterations;
+          hooks.on_cell(counted);
+        }
+    }
+    return !(stopped = !keep_going(hooks, index++));
+  });
+  if (stopped || !map.complete) throw RenderCancelled{};
+  return renderer.basins_png(map, width, height);
 }
 
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,

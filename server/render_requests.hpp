@@ -29,6 +29,9 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
 // Heatmap: a SweepRequest or {"sweep": SweepResult}, plus metric/width/height (0 or absent: automatic).
 std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,
                                           const RenderHooks& hooks);
+// Basin map: a BasinRequest plus width/height (0 or absent: automatic); one panel per method.
+std::vector<unsigned char> render_basins(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks);
 // Work-precision diagram: a WorkPrecisionRequest plus width/height (default 960 x 640).
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
                                                  const RenderHooks& hooks);

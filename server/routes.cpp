@@ -20,6 +20,10 @@ std::vector<RouteSpec> build_table() {
       {&ApiHandlers::sweep, "POST", "/api/v1/sweep",
        "Stability map over (method, n, h); NDJSON streams one cell record per finished cell", BodyKind::json, true,
        "SweepRequest", {"application/json", ndjson}, "SweepResult", kJsonPostErrors},
+      {&ApiHandlers::basins, "POST", "/api/v1/basins",
+       "Basin map: each method from every start y0 = z exp(a B1 + b B2) of a grid, each pixel classified by the root "
+       "it reached or its failure; NDJSON streams a grid record, one row record per finished row, then the summary",
+       BodyKind::json, true, "BasinRequest", {"application/json", ndjson}, "BasinResult", kJsonPostErrors},
       {&ApiHandlers::integrate, "POST", "/api/v1/integrate",
        "Time stepping with an implicit Lie group integrator; NDJSON streams one step record per step",
        BodyKind::json, true, "IntegrateRequest", {"application/json", ndjson}, "IntegrateResult", kJsonPostErrors},
@@ -39,6 +43,12 @@ std::vector<RouteSpec> build_table() {
       {&ApiHandlers::render_heatmap, "GET", "/api/v1/render/heatmap",
        "GET form of render/heatmap for <img src> (query parameters mirror the sweep request)", BodyKind::none, true,
        "RenderHeatmapRequest", {"image/png"}, "", kGetWorkErrors},
+      {&ApiHandlers::render_basins, "POST", "/api/v1/render/basins",
+       "PNG basin map: one panel per method, roots in distinct hues shaded by iterations, failures in their colours",
+       BodyKind::json, true, "RenderBasinsRequest", {"image/png"}, "", kJsonPostErrors},
+      {&ApiHandlers::render_basins, "GET", "/api/v1/render/basins",
+       "GET form of render/basins for <img src> (query parameters mirror BasinRequest)", BodyKind::none, true,
+       "RenderBasinsRequest", {"image/png"}, "", kGetWorkErrors},
       {&ApiHandlers::render_work_precision, "POST", "/api/v1/render/work-precision",
        "PNG work-precision diagram: solver CPU time vs global error, one line per choice through its h, fitted order "
        "in the legend", BodyKind::json, true, "RenderWorkPrecisionRequest", {"image/png"}, "", kJsonPostErrors},

@@ -1,5 +1,6 @@
-// Entry point: builds the four panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
+// Entry point: builds the five panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
 // Home/End) and the URL hash, so a panel can be linked to and survives a reload.
+import { createBasinsPanel } from './panels/basins.js';
 import { createComparePanel } from './panels/compare.js';
 import { createSolvePanel } from './panels/solve.js';
 import { createSpeedPanel } from './panels/speed.js';
@@ -36,6 +37,12 @@ document.querySelector('.skip-link').addEventListener('click', (e) => {
 const solve = createSolvePanel(document.querySelector('#solve .panel-body'));
 createComparePanel(document.querySelector('#compare .panel-body'));
 createStabilityPanel(document.querySelector('#stability .panel-body'), {
+  openSolve(request) {
+    select(tabs[0]);
+    solve.open(request);
+  },
+});
+createBasinsPanel(document.querySelector('#basins .panel-body'), {
   openSolve(request) {
     select(tabs[0]);
     solve.open(request);

@@ -71,6 +71,7 @@ class Equation {
       p.hg = h_ * field_->g(y);
       p.f = p.v - p.hg;
     } else {
+      p.hg = zero_vector(group_);  // no h g for a user f; fixed-size vectors would otherwise hold garbage
       p.f = f_(y);
     }
     p.residual = p.f.norm();
@@ -91,6 +92,7 @@ class Equation {
       p.hg = h_ * field_->g(p.y);
       p.f = v - p.hg;
     } else {
+      p.hg = zero_vector(group_);
       p.f = f_(p.y);
     }
     p.algebra_residual = p.residual = p.f.norm();
@@ -233,10 +235,30 @@ class Equation {
   // The z rule: the given z replaced by its orthogonal polar factor; how far that moved it (Frobenius).
   double z_adjustment() const { return z_adjustment_; }
 
+  // Where the solvers start: y_0 = z, as section 5 does, unless start_at(y0) moved it (a request's y0, a
+  // basin map's pixel). y0 must lie in z SO(N); it is replaced by its polar factor, as z is.
+  const Element& start() const { return y0_; }
+  void start_at(const Element& y0) {
+    y0_ = group_.project(y0);
+    moved_start_ = true;
+  }
+  // v_0 with y_0 = z exp(v_0), Version 2's start (3.20): 0 at z, else log(z^-1 y_0); empty when z^-1 y_0 is at
+  // the edge of log's domain.
+  std::optional<Vector> start_algebra() const {
+    if (!moved_start_) return zero_vector(group_);
+    try {
+      double angle = 0;
+      Vector v = group_.log_vector(group_.compose(z_inv_, y0_), angle);
+      if (inside_log_domain<G>(angle)) return v;
+    } catch (const LogDomainError&) {
+    }
+    return std::nullopt;
+  }
+
  private:
   Equation(G group, Element z, double h, const VectorField<G>* field, UserF f, UserDf df)
       : group_(group), z_(group_.project(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field),
-        f_(std::move(f)), df_(std::move(df)), z_adjustment_((z - z_).norm()) {}
+        f_(std::move(f)), df_(std::move(df)), z_adjustment_((z - z_).norm()), y0_(z_) {}
 
   // Forward-difference step t = sqrt(eps) scaled to the point and the direction, as the paper suggests
   // for (3.12)/(3.18): |t u| ~ sqrt(eps) max(1, |v|).
@@ -283,6 +305,8 @@ class Equation {
   UserF f_;
   UserDf df_;
   double z_adjustment_;
+  Element y0_;
+  bool moved_start_ = false;
 };
 
 }  // namespace lienewton

@@ -1,6 +1,6 @@
 #pragma once
-// The fixed-point iteration (1.2), started at y_0 = z: y_{n+1} = z exp(h g(y_n)).
-// In the algebra it is v_{n+1} = h g(z exp v_n) with v_0 = 0, so its algebra residual is
+// The fixed-point iteration (1.2), started at y_0 = eq.start() (z unless moved): y_{n+1} = z exp(h g(y_n)).
+// In the algebra it is v_{n+1} = h g(z exp v_n) with v_0 = log(z^-1 y_0) (0 at z), so its algebra residual is
 // f~(v_n) = v_n - h g(y_n) (3.21) with v_n = h g(y_{n-1}): no log needed.
 #include <cmath>
 
@@ -12,8 +12,10 @@ namespace lienewton {
 template <LieGroup G>
 SolveResult fixed_point(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   SolverRun<G> run(eq, opt, cb, false);
-  typename G::Element y = eq.z();
-  typename G::Vector v = zero_vector(eq.group());
+  typename G::Element y = eq.start();
+  const auto v0 = eq.start_algebra();
+  if (!v0) return run.left_log_domain(eq.at(y, Equation<G>::Need::residual));
+  typename G::Vector v = *v0;
   double step = 0.0;
   for (;;) {
     auto p = eq.at(y, Equation<G>::Need::residual);

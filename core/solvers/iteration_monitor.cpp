@@ -52,15 +52,17 @@ double IterationMonitor::elapsed() const {
 
 std::optional<Status> IterationMonitor::record(TraceRecord rec, const Measurement& m) {
   rec.iteration = iteration_;
-  rec.seconds = elapsed();
-  rec.cpu_seconds = solver_cpu_seconds();
+  if (options_.timed) {
+    rec.seconds = elapsed();
+    rec.cpu_seconds = solver_cpu_seconds();
+  }
   const double step = rec.step;
   stops_.push_back(m.stop);
   trace_.push_back(std::move(rec));
   if (callback_) {
-    const double before = thread_cpu_seconds();
+    const double before = options_.timed ? thread_cpu_seconds() : 0.0;
     const bool go_on = callback_(trace_.back());
-    callback_cpu_seconds_ += thread_cpu_seconds() - before;
+    if (options_.timed) callback_cpu_seconds_ += thread_cpu_seconds() - before;
     if (!go_on) return Status::cancelled;
   }
   if (cancellation_requested()) return Status::cancelled;  // deadline, shutdown, client gone

@@ -1,5 +1,5 @@
 #pragma once
-// Newton's method in the algebra, Version 2 (3.20), started at v_0 = 0 (y_0 = z):
+// Newton's method in the algebra, Version 2 (3.20), started at v_0 = log(z^-1 y_0) (0 when y_0 = z):
 //   df~_{v_n}(u_n) = -f~(v_n),   v_{n+1} = v_n + u_n,   y_n = z exp(v_n).
 // With a globalization other than none, the globalised iteration of globalization.hpp.
 #include "charts.hpp"
@@ -17,7 +17,9 @@ SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, cons
   if (opt.globalization != Globalization::none) return globalized_newton<G>(chart, zero_vector(group), opt, cb);
   const bool krylov = detail::use_krylov(group, opt.linear_solver);
   SolverRun<G> run(eq, opt, cb, krylov);
-  typename G::Vector v = zero_vector(group);
+  const auto v0 = eq.start_algebra();
+  if (!v0) return run.left_log_domain(eq.at(eq.start(), Equation<G>::Need::residual));
+  typename G::Vector v = *v0;
   typename G::Vector u = zero_vector(group);
   double step = 0.0;
   for (;;) {

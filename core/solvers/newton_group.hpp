@@ -1,5 +1,5 @@
 #pragma once
-// Newton's method on the group, Version 1 (3.5), started at y_0 = z:
+// Newton's method on the group, Version 1 (3.5), started at y_0 = eq.start() (z unless moved):
 //   df_{y_n}(u_n) = -f(y_n),   y_{n+1} = y_n exp(u_n).
 // With a globalization other than none, the globalised iteration of globalization.hpp.
 #include "charts.hpp"
@@ -17,7 +17,7 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
   const G& group = eq.group();
   const bool krylov = detail::use_krylov(group, opt.linear_solver);
   SolverRun<G> run(eq, opt, cb, krylov);
-  typename G::Element y = eq.z();
+  typename G::Element y = eq.start();
   typename G::Vector u = zero_vector(group);
   double step = 0.0;
   for (;;) {

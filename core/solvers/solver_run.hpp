@@ -55,6 +55,7 @@ class SolverRun {
     const Iterate it{p.y, monitor_.iteration(), p.residual, p.algebra_residual, driven, floor};
     if (!(best_.driven <= driven)) best_ = it;
     last_ = it;
+    recorded_ = true;
     return monitor_.record(std::move(rec), {stop, driven, algebra ? "||f~(v)||" : "||f(y)||", floor});
   }
   void next() { monitor_.next(); }
@@ -91,8 +92,13 @@ class SolverRun {
     return res;
   }
   // The iterate p.y (not recorded) is at the boundary of log's domain: f(p.y) is undefined, so the last
-  // recorded iterate is returned.
+  // recorded iterate is returned (p.y itself when it is the start y_0: f is undefined there too).
   SolveResult left_log_domain(const Point& p) {
+    if (!recorded_) {
+      Iterate start;
+      start.y = p.y;
+      last_ = best_ = start;
+    }
     char buf[112];
     std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", monitor_.iteration(), p.angle,
                   G::kLogRadius - p.angle);
@@ -124,6 +130,7 @@ class SolverRun {
   IterationMonitor monitor_;
   std::optional<double> kappa_;
   Iterate last_, best_;
+  bool recorded_ = false;
   int reorthogonalisations_ = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/basins.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -29,12 +30,14 @@ constexpr const char* kUsage =
     "Commands (request JSON on stdin, result on stdout; the documents of the HTTP API, see /openapi.json):\n"
     "  solve            one solve of y = z exp(h g(y)) -> result JSON\n"
     "  sweep            stability map over (method, n, h) -> {\"cells\": [...], \"seconds\"}\n"
+    "  basins           basin map: each method from every start y0 = z exp(a B1 + b B2) -> {\"grid\",\"rows\",\"roots\",...}\n"
     "  integrate        time stepping with an implicit Lie group integrator -> result JSON\n"
     "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
     "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
     "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
     "  merge FILE...    join the outputs of a sweep run in shards (\"shard\": {\"index\": i, \"count\": k}, one\n"
     "                   FILE each, any order) into the unsharded sweep's output (\"seconds\": summed over the parts)\n"
+    "  render basins    basin request (plus width/height) -> PNG basin map on stdout\n"
     "  figures [DIFF]   the paper's Figures 5.1 and 5.2 as Markdown tables (no stdin): the default sweep of\n"
     "                   paper-linear and paper-sine, differential DIFF (default finite-difference, as the paper)\n"
     "  --help           this text\n"
@@ -65,13 +68,17 @@ int run(const std::string& command, const std::string& sub) {
     out = to_json(solve(r), r.solver.include_iterates);
   } else if (command == "sweep") {
     out = to_json(sweep(sweep_request_from_json(body, limits)));
+  } else if (command == "basins") {
+    const BasinRequest r = basin_request_from_json(body, limits);
+    out = to_json(basins(r), r.methods);
   } else if (command == "integrate") {
     out = to_json(integrate(integrate_request_from_json(body, limits)));
   } else if (command == "work-precision") {
     out = to_json(work_precision(work_precision_request_from_json(body, limits)));
   } else {
     render::Renderer renderer(1);
-    write_png(sub == "frames" ? render_frames(body, limits, renderer, {}) : render_heatmap(body, limits, renderer, {}));
+    const RenderRequestFn draw = sub == "frames" ? render_frames : sub == "basins" ? render_basins : render_heatmap;
+    write_png(draw(body, limits, renderer, {}));
     return 0;
   }
   std::cout << dump(out) << "\n";
@@ -122,8 +129,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (command == "figures" && argc <= 3) return figures(sub);
-  const bool plain = command == "solve" || command == "sweep" || command == "integrate" || command == "work-precision";
-  const bool render = command == "render" && (sub == "frames" || sub == "heatmap");
+  const bool plain = command == "solve" || command == "sweep" || command == "basins" || command == "integrate" ||
+                     command == "work-precision";
+  const bool render = command == "render" && (sub == "frames" || sub == "heatmap" || sub == "basins");
   const bool merging = command == "merge" && argc > 2;
   if ((!plain && !render && !merging) || (!merging && argc > (render ? 3 : 2))) {
     std::cerr << kUsage;

@@ -142,6 +142,37 @@ def huge_sweep_grid(t):
     return expect_refusal(t, "/api/v1/sweep", body, {400, 422}, None)
 
 
+# ---------------------------------------------------------------- basin maps
+def huge_basin_grid(t):
+    return expect_refusal(t, "/api/v1/basins", '{"size": 100000}', {413, 422}, "size")
+
+
+def basin_grid_beyond_output_cap(t):
+    # 512 x 512 is the largest map, but its three methods' pixels are more numbers than one JSON answer may hold.
+    return expect_refusal(t, "/api/v1/basins", '{"size": 512}', {413}, "size")
+
+
+def basin_nan_radius(t):
+    expect_refusal(t, "/api/v1/basins", '{"r": NaN}', {400}, None)
+    return expect_refusal(t, "/api/v1/basins", '{"r": "NaN"}', {400}, "r")
+
+
+def bad_y0(t):
+    expect_refusal(t, "/api/v1/solve", '{"n": 3, "y0": [[2,0,0],[0,2,0],[0,0,2]]}', {422}, "y0")
+    expect_refusal(t, "/api/v1/solve", '{"n": 3, "y0": [[1,0],[0,1]]}', {400}, "y0")
+    return expect_refusal(t, "/api/v1/solve", '{"n": 3, "y0": [[1,0,0],[0,1,0],[0,0,null]]}', {400}, "y0")
+
+
+def deadline_inside_basin_map(t):
+    # 128 x 128 starts at SO(12) by finite differences: far beyond the battery server's 3 s sweep deadline.
+    body = json.dumps({"n": 12, "h": 32, "differential": "finite-difference", "size": 128})
+    status, _, data, secs = t.request("POST", "/api/v1/basins", body)
+    expect(status == 504, f"status {status}: {data[:160]!r}")
+    expect(secs < 8, f"answered after {secs:.1f} s")
+    expect(t.livez_seconds() is not None, "server not alive afterwards")
+    return f"504 after {secs:.1f} s"
+
+
 def wrong_content_type(t):
     status, _, data, _ = t.request("POST", "/api/v1/solve", '{"n":3}', {"Content-Type": "text/xml"})
     expect(status == 415, f"status {status}: {data[:160]!r}")
@@ -452,7 +483,8 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            expect_continue_oversized, many_headers, chunked_smuggling, pipelined_requests, range_on_api_route,
            metrics_method_injection, slow_header_drip, idle_connections, deadline_inside_sweep_cell,
            iterates_output_cap, image_pixels_cap, deadline_inside_integration, heatmap_get_needs_grid,
-           cross_site_work, ndjson_stream, sse_stream, stream_first_record_early]
+           cross_site_work, ndjson_stream, sse_stream, stream_first_record_early, huge_basin_grid,
+           basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work]  # direct mode only: they start servers
 
 

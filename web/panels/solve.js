@@ -3,7 +3,7 @@
 import { postImage, stream } from '../shared/api.js';
 import { residualChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, select } from '../shared/fields.js';
+import { actions, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from '../shared/labels.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
@@ -16,6 +16,8 @@ export function createSolvePanel(root) {
     select('differential', 'Differential', DIFFERENTIALS, DEFAULTS.differential,
       'Ignored by the fixed-point method'),
     limitFields(),
+    field('y0', 'Start guess y\u2080 (JSON rows; empty: y\u2080 = z)', el('textarea', { name: 'y0', rows: 3,
+      spellcheck: 'false', autocomplete: 'off' }), 'Filled when a basin map pixel is opened here'),
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to solve y = z exp(h g(y)).');
   const chartBox = el('div', { class: 'chart', id: 'solve-chart' });
@@ -35,6 +37,8 @@ export function createSolvePanel(root) {
   async function run() {
     const request = { ...readCommon(form), method: value(form, 'method'),
       differential: value(form, 'differential'), include_iterates: false };
+    const y0 = value(form, 'y0');
+    if (y0) request.y0 = parseOr(y0);
     const records = [];
     let queued = false;
     const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
@@ -80,11 +84,18 @@ export function createSolvePanel(root) {
 
   form.addEventListener('submit', (e) => { e.preventDefault(); run(); });
   return {
+    // A request without y0 (a stability-map cell) starts at z again.
     open(request) {
+      form.elements.namedItem('y0').value = '';
       fill(form, request);
       run();
     },
   };
+}
+
+// JSON text as a value; text that is not JSON goes to the server as it is, which names the field.
+function parseOr(text) {
+  try { return JSON.parse(text); } catch { return text; }
 }
 
 function traceTable(records) {

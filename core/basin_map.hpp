@@ -1,0 +1,188 @@
+#pragma once
+// The basin map of any equation f(y) = 0 on a group G (basins.hpp builds the implicit Euler one of a request):
+// every pixel's solve, and the classification of rows in order. Tests use it with equations whose roots are
+// known.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <set>
+
+#include "core/basins.hpp"
+#include "core/cancellation.hpp"
+#include "core/parallel_for.hpp"
+#include "core/solvers/run_method.hpp"
+
+namespace lienewton {
+
+// The plane of starts and what runs from each: y_0 = z exp(a b1 + b b2) over the grid of basin_axis(size, radius).
+struct BasinPlane {
+  Eigen::VectorXd b1, b2;  // unit directions, algebra coordinates
+  int size = kDefaultBasinSize;
+  double radius = std::numbers::pi;
+  std::vector<Method> methods;
+  SolverOptions solver;  // basin_map() turns off per-iterate timing and iterates
+  int threads = 0;
+};
+
+// What one solve left in its pixel until its row is classified.
+template <LieGroup G>
+struct Slot {
+  Status status = Status::cancelled;
+  int iterations = 0;
+  typename G::Element y;  // converged pixels only
+};
+
+// One map of an equation on group G: the equation is shared (read-only) by the workers; each pixel solves a
+// copy started at its own y_0.
+template <LieGroup G>
+class BasinMap {
+ public:
+  using Element = typename G::Element;
+  using Vector = typename G::Vector;
+
+  BasinMap(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row)
+      : group_(eq.group()), eq_(eq), plane_(untimed(plane)), on_row_(on_row), size_(plane.size),
+        methods_(static_cast<int>(plane.methods.size())), b1_(plane.b1), b2_(plane.b2) {
+    result_.grid = {basin_axis(size_, plane.radius), plane.radius, plane.b1, plane.b2, Eigen::MatrixXd(eq.z())};
+  }
+
+  BasinResult run() {
+    const int per_row = size_ * methods_;
+    slots_.resize(static_cast<std::size_t>(size_) * per_row);
+    remaining_ = std::vector<std::atomic<int>>(static_cast<std::size_t>(size_));
+    for (auto& r : remaining_) r = per_row;
+    // Items in pixel order (row, column, method): rows complete roughly in order, so few wait to be classified.
+    parallel_for(static_cast<int>(slots_.size()), plane_.threads, [&](int k) { return solve_pixel(k, per_row); });
+    result_.complete = static_cast<int>(result_.rows.size()) == size_;
+    summarise();
+    return std::move(result_);
+  }
+
+ private:
+  bool solve_pixel(int k, int per_row) {
+    if (stop_.load() || cancellation_requested()) return !(stop_ = true);
+    const int row = k / per_row, column = (k % per_row) / methods_, m = k % methods_;
+    Equation<G> eq = eq_;
+    const std::vector<double>& axis = result_.grid.axis;
+    eq.start_at(group_.times_exp(eq_.z(), Vector(axis[column] * b1_ + axis[row] * b2_)));
+    SolveResult r;
+    try {
+      r = run_method(plane_.methods[static_cast<std::size_t>(m)], eq, plane_.solver, {});
+    } catch (const Cancelled&) {  // inside a finite-difference differential
+      return !(stop_ = true);
+    }
+    if (r.status == Status::cancelled) return !(stop_ = true);
+    Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
+    slot.status = r.status;
+    slot.iterations = r.iterations;
+    if (r.status == Status::converged) slot.y = Element(r.y);
+    if (remaining_[static_cast<std::size_t>(row)].fetch_sub(1) == 1) classify_completed_rows();
+    return !stop_.load();
+  }
+
+  // Classifies the rows that are complete and next in order, under the lock: root ids are handed out in pixel
+  // order whatever the schedule.
+  void classify_completed_rows() {
+    std::lock_guard lock(mutex_);
+    while (next_row_ < size_ && remaining_[static_cast<std::size_t>(next_row_)].load() == 0 && !stop_.load()) {
+      BasinRow row;
+      row.row = next_row_;
+      row.b = result_.grid.axis[static_cast<std::size_t>(next_row_)];
+      row.pixels.assign(static_cast<std::size_t>(methods_), std::vector<BasinPixel>(static_cast<std::size_t>(size_)));
+      for (int column = 0; column < size_; ++column) {
+        for (int m = 0; m < methods_; ++m) {
+          Slot<G>& slot = slots_[(static_cast<std::size_t>(next_row_) * size_ + column) * methods_ + m];
+          BasinPixel& pixel = row.pixels[static_cast<std::size_t>(m)][static_cast<std::size_t>(column)];
+          pixel.status = slot.status;
+          pixel.iterations = slot.iterations;
+          if (slot.status == Status::converged) pixel.root = root_of(slot.y, row.new_roots);
+          if constexpr (Element::SizeAtCompileTime == Eigen::Dynamic) slot.y.resize(0, 0);  // free row by row
+        }
+      }
+      result_.rows.push_back(std::move(row));
+      ++next_row_;
+      if (on_row_ && !on_row_(result_.rows.back(), result_.roots)) stop_ = true;
+    }
+  }
+
+  // The id of the root y belongs to, adding a root when it is new. ||I - R||_F / sqrt(2) <= ||log R|| (chord
+  // against arc, in the coordinate norm), so roots farther than that in Frobenius norm need no log.
+  int root_of(const Element& y, std::vector<int>& new_roots) {
+    for (std::size_t i = 0; i < root_ys_.size(); ++i) {
+      if ((y - root_ys_[i]).norm() > std::sqrt(2.0) * kRootDistance * 1.01) continue;
+      double angle = 0;
+      try {
+        if (group_.log_vector(group_.compose(group_.inverse(root_ys_[i]), y), angle).norm() < kRootDistance)
+          return static_cast<int>(i);
+      } catch (const LogDomainError&) {
+      }
+    }
+    BasinRoot root;
+    root.id = static_cast<int>(root_ys_.size());
+    root.y = y;
+    const auto p = eq_.at(y, Equation<G>::Need::residual);
+    root.residual = p.residual;
+    root.distance_from_z = p.v.norm();
+    if (eq_.is_implicit_euler()) root.hg_angle = group_.angle(group_.spectral(p.hg));
+    root_ys_.push_back(y);
+    result_.roots.push_back(std::move(root));
+    new_roots.push_back(result_.roots.back().id);
+    return result_.roots.back().id;
+  }
+
+  void summarise() {
+    for (int m = 0; m < methods_; ++m) {
+      BasinMethodSummary s;
+      s.method = plane_.methods[static_cast<std::size_t>(m)];
+      std::set<int> reached;
+      double iterations = 0;
+      for (const BasinRow& row : result_.rows) {
+        for (const BasinPixel& p : row.pixels[static_cast<std::size_t>(m)]) {
+          ++s.pixels;
+          const auto status = static_cast<std::size_t>(std::find(std::begin(kAllStatuses), std::end(kAllStatuses),
+                                                                 p.status) - std::begin(kAllStatuses));
+          ++s.status_counts[status];
+          if (p.status != Status::converged) continue;
+          ++s.converged;
+          iterations += p.iterations;
+          reached.insert(p.root);
+        }
+      }
+      s.basins = static_cast<int>(reached.size());
+      if (s.pixels > 0) s.converged_fraction = static_cast<double>(s.converged) / s.pixels;
+      if (s.converged > 0) s.mean_iterations = iterations / s.converged;
+      result_.methods.push_back(s);
+    }
+  }
+
+  // No per-iterate clock (a system call costs more than an SO(3) iteration) and no stored iterates.
+  static BasinPlane untimed(BasinPlane plane) {
+    plane.solver.timed = false;
+    plane.solver.include_iterates = false;
+    return plane;
+  }
+
+  const G& group_;
+  const Equation<G>& eq_;
+  const BasinPlane plane_;
+  const BasinRowCallback& on_row_;
+  int size_, methods_;
+  Vector b1_, b2_;
+  BasinResult result_;
+  std::vector<Slot<G>> slots_;
+  std::vector<std::atomic<int>> remaining_;  // unsolved items per row
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;  // guards the classification: next_row_, root_ys_, result_.rows/roots and on_row_
+  int next_row_ = 0;
+  std::vector<Element> root_ys_;
+};
+
+
+// The map of eq over the plane (basins() without a request: no validation here).
+template <LieGroup G>
+BasinResult basin_map(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row = {}) {
+  return BasinMap<G>(eq, plane, on_row).run();
+}
+
+}  // namespace lienewton

@@ -1,0 +1,105 @@
+#pragma once
+// Basin maps (issue 14): from which starting guesses does each method converge, and to which root?
+// For the implicit Euler equation f(y) = log(z^-1 y) - h g(y) = 0 (3.6) with the request's z, the start of
+// every solve is moved over a plane of the group through z,
+//   y_0(a, b) = z exp(a B1 + b B2),   (a, b) in [-r, r]^2 on a size x size grid of pixel centres,
+// and each chosen method runs from each y_0 (Version 1 from y_0 (3.5), Version 2 from v_0 = log(z^-1 y_0)
+// (3.20), the fixed point (1.2) from y_0). A pixel is converged to root k, or carries its failure Status.
+// Roots are the converged y clustered by ||log(y_i^-1 y_j)|| < kRootDistance and numbered in pixel order
+// (rows by b, then columns by a, then the request's method order), so the numbering is the same for any
+// thread count: rows are clustered one after the other, in order, as they complete.
+#include <Eigen/Dense>
+#include <array>
+#include <functional>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include "solve.hpp"
+#include "status.hpp"
+
+namespace lienewton {
+
+inline constexpr int kDefaultBasinSize = 128;
+inline constexpr int kMaxBasinSize = 512;
+inline constexpr double kRootDistance = 1e-8;
+
+// A basin request is a solve request without its method (the equation: problem, N, h, z; and the solver
+// options: differential, tol, ...) plus the plane of starts and the methods to run from each.
+struct BasinRequest {
+  SolveRequest solve{};  // its method, y0 and include_iterates are not used
+  std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
+  int size = kDefaultBasinSize;     // pixels per side
+  double radius = std::numbers::pi; // r
+  // B1, B2 as algebra coordinates (basis E_ij - E_ji), normalised before use; default the first two basis
+  // elements.
+  std::optional<Eigen::VectorXd> b1{}, b2{};
+  int threads = 0;  // 0: all cores
+};
+
+// One pixel for one method.
+struct BasinPixel {
+  Status status = Status::max_iterations;
+  int root = -1;       // the root's id when converged, else -1
+  int iterations = 0;  // the solve's iterations (converged: the first n with ||f(y_n)|| <= tol)
+};
+
+struct BasinRoot {
+  int id = 0;
+  Eigen::MatrixXd y;          // the first converged y (in pixel order) of the cluster
+  double residual = 0;        // ||f(y)|| of that y
+  double distance_from_z = 0; // ||log(z^-1 y)||
+  double hg_angle = 0;        // largest rotation angle of h g(y)
+};
+
+struct BasinRow {
+  int row = 0;  // b index: b = -r + r (2 row + 1) / size
+  double b = 0;
+  std::vector<std::vector<BasinPixel>> pixels;  // [method][column]
+  std::vector<int> new_roots;                   // ids of the roots first met in this row
+};
+
+struct BasinMethodSummary {
+  Method method = Method::newton_group;
+  int pixels = 0;
+  int converged = 0;
+  double converged_fraction = 0;
+  int basins = 0;                         // distinct roots this method reached
+  std::optional<double> mean_iterations;  // over the converged pixels
+  std::array<int, std::size(kAllStatuses)> status_counts{};  // indexed like kAllStatuses
+};
+
+// Where the starts lie: y_0 = z exp(a b1 + b b2) for a in axis (columns) and b in axis (rows).
+struct BasinGrid {
+  std::vector<double> axis;  // pixel-centre coordinates, basin_axis(size, radius)
+  double radius = 0;         // r
+  Eigen::VectorXd b1, b2;    // the unit directions used (algebra coordinates)
+  Eigen::MatrixXd z;         // the equation's z (after the z rule: its orthogonal polar factor)
+};
+
+struct BasinResult {
+  BasinGrid grid;
+  std::vector<BasinRow> rows; // in row order; a cancelled map holds the rows finished before the stop
+  std::vector<BasinRoot> roots;
+  std::vector<BasinMethodSummary> methods;
+  bool complete = false;      // every row finished
+  double seconds = 0;
+};
+
+// Checks the request; throws RequestError naming the field (size beyond kMaxBasinSize, radius, b1/b2 of the
+// wrong length, zero or parallel, N = 2 whose algebra has one dimension, ...).
+void validate(const BasinRequest& request);
+
+// Called in row order, serialised, as each row is classified; return false to stop the map.
+using BasinRowCallback = std::function<bool(const BasinRow& row, const std::vector<BasinRoot>& roots)>;
+
+// Computes the map in parallel. Every solve polls the current cancellation token; a cancelled map returns the
+// rows finished so far (complete = false).
+BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row = {});
+
+// The map's pixel-centre coordinates -r + r (2 i + 1) / size, i = 0..size-1.
+std::vector<double> basin_axis(int size, double radius);
+// The grid of a valid request, without solving anything (streams announce it before the first row).
+BasinGrid basin_grid(const BasinRequest& request);
+
+}  // namespace lienewton
