@@ -13,7 +13,7 @@ if (!binary || !webRoot || !shots) {
   console.error('usage: node dashboard.test.mjs <server-binary> <web-root> <screenshot-dir>');
   process.exit(2);
 }
-watchdog(110_000);
+watchdog(150_000);
 mkdirSync(shots, { recursive: true });
 
 let server; let browser; let page; let base;
@@ -55,7 +55,7 @@ function near(shown, expected, abs, rel) {
 // Every panel's visible text, tab by tab, free of the marks of a missing label or value.
 async function everyPanelReadsWell() {
   const broken = /.{0,40}(undefined|\[object Object\]|\bnull\b).{0,40}/;
-  for (const name of ['Solve', 'Compare', 'Stability map', 'Speed vs accuracy']) {
+  for (const name of ['Solve', 'Compare', 'Stability map', 'Basins', 'Speed vs accuracy']) {
     await tab(name);
     const hit = (await page.locator('main').innerText()).match(broken);
     assert.equal(hit, null, `${name} panel shows: ${hit?.[0]}`);
@@ -315,13 +315,84 @@ test('the work-precision chart has one series per ticked choice', async () => {
   await shot('speed');
 });
 
+test('a basin map streams in, matches the API pixel by pixel, and a pixel opens as a solve with y0', async () => {
+  await tab('Basins');
+  const panel = page.locator('#basins');
+  for (const [name, v] of [['n', '3'], ['h', '4'], ['size', '24']]) await panel.locator(`[name="${name}"]`).fill(v);
+  await panel.getByRole('checkbox', { name: 'Fixed point (1.2)' }).uncheck();
+  const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/basins'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const request = JSON.parse((await sent).postData());
+  await page.waitForFunction(() => document.querySelector('#basin-img')?.naturalWidth > 0);
+  const { status, body: map } = await api('/api/v1/basins', request);
+  assert.equal(status, 200);
+  assert.equal(map.rows.length, 24);
+  // The summary table says what the API says.
+  for (const m of map.methods) {
+    const row = panel.locator(`.basin-summary tr[data-method="${m.method}"] td`);
+    assert.equal(await row.nth(0).innerText(), `${(100 * m.converged_fraction).toFixed(1)}%`);
+    assert.equal(Number(await row.nth(1).innerText()), m.basins);
+  }
+  // Every pixel of every canvas: failures in their status colour, converged pixels in their root's hue.
+  const catalog = (await (await fetch(base + '/openapi.json')).json())['x-lienewton'];
+  const statusColor = Object.fromEntries(catalog.enums.status.map((s) => [s.value, s.color]));
+  const shown = await page.evaluate(() => [...document.querySelectorAll('#basin-maps canvas')].map((c) =>
+    Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data)));
+  const rgb = (css) => (css.startsWith('#') ? [1, 3, 5].map((i) => parseInt(css.slice(i, i + 2), 16)) : css.match(/\d+/g).map(Number));
+  let converged = 0;
+  map.methods.forEach((m, k) => {
+    for (const row of map.rows) {
+      const per = row.methods[k];
+      for (let c = 0; c < 24; c += 1) {
+        const at = ((23 - row.row) * 24 + c) * 4;
+        const px = shown[k].slice(at, at + 3);
+        if (per.status[c] !== 'converged') {
+          assert.deepEqual(px, rgb(statusColor[per.status[c]]), `${m.method} row ${row.row} col ${c} ${per.status[c]}`);
+          continue;
+        }
+        converged += 1;
+        const hue = rgb(catalog.colors.basin_roots[per.root % catalog.colors.basin_roots.length]);
+        const scale = px.map((v, i) => (hue[i] ? v / hue[i] : 1));  // one shade factor for all three channels
+        assert.ok(Math.max(...scale) - Math.min(...scale) < 0.05, `${m.method} row ${row.row} col ${c}: ${px} vs root ${hue}`);
+      }
+    }
+  });
+  assert.ok(converged > 0);
+  await shot('basins');
+  // A pixel inside a basin (its neighbours reached the same root) opens as a solve from its start: same root.
+  const k = 0;
+  const inside = [];
+  for (let r = 1; r < 23; r += 1) for (let c = 1; c < 23; c += 1) {
+    const root = (rr, cc) => map.rows[rr].methods[k].root[cc];
+    if (root(r, c) !== null && [[-1, 0], [1, 0], [0, -1], [0, 1]].every(([dr, dc]) => root(r + dr, c + dc) === root(r, c))) inside.push([r, c]);
+  }
+  assert.ok(inside.length > 0, 'no pixel inside a basin');
+  const [r, c] = inside[0];
+  const canvas = panel.locator('canvas').nth(k);
+  const box = await canvas.boundingBox();
+  const solveSent = page.waitForRequest((q) => q.url().endsWith('/api/v1/solve'));
+  await canvas.click({ position: { x: (c + 0.5) * box.width / 24, y: (23 - r + 0.5) * box.height / 24 } });
+  assert.equal(await page.getByRole('tab', { name: 'Solve' }).getAttribute('aria-selected'), 'true');
+  const solve = JSON.parse((await solveSent).postData());
+  assert.equal(solve.method, map.methods[k].method);
+  assert.equal(solve.y0.length, 3);
+  await page.locator('#solve [data-result="iterations"]').waitFor();
+  const { body: result } = await api('/api/v1/solve', solve);
+  assert.equal(result.status, 'converged');
+  const root = map.roots[map.rows[r].methods[k].root[c]].y;
+  const distance = Math.hypot(...result.y.flat().map((v, i) => v - root.flat()[i]));
+  assert.ok(distance < 1e-9, `the opened solve reached another root (${distance})`);
+  assert.notEqual(await page.locator('#solve textarea[name="y0"]').inputValue(), '');
+});
+
 test('after every panel has run, none shows "undefined"', everyPanelReadsWell);
 
 // docs/screenshots/ holds copies of these (README): each panel after its run, at a laptop and a phone size.
 test('screenshots of every panel at 1440x900 and 390x844', async () => {
   for (const [w, hgt] of [[1440, 900], [390, 844]]) {
     await page.setViewportSize({ width: w, height: hgt });
-    for (const [name, id] of [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Speed vs accuracy', 'speed']]) {
+    for (const [name, id] of [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Basins', 'basins'],
+      ['Speed vs accuracy', 'speed']]) {
       await tab(name);
       await page.evaluate(() => window.scrollTo(0, 0));
       await page.waitForTimeout(150); // charts follow the new width on the next frame
