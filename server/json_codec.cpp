@@ -374,7 +374,11 @@ BasinRequest basin_request_from_json(const json& body, const Limits& limits) {
   }
   // Any integer is read: the core refuses a size beyond its largest map (422), the server's output cap with 413.
   if (!size.is_null()) r.size = read_int(size, "size", 1, INT_MAX);
-  if (!radius.is_null()) r.radius = read_positive(radius, "r", 100, "100");
+  if (!radius.is_null()) {
+    const std::string message = "r must be a finite number in (0, 100]";
+    r.radius = read_number(radius, "r", message);
+    if (!(r.radius > 0 && r.radius <= 100)) fail("r", message);
+  }
   const std::size_t dim = static_cast<std::size_t>(r.solve.problem.n) * static_cast<std::size_t>(r.solve.problem.n - 1) / 2;
   for (int k = 0; k < 2; ++k) {
     if (b[k].is_null()) continue;

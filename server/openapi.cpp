@@ -147,7 +147,7 @@ json schemas() {
   s["BasinRequest"] = object({{"problem", problem}, {"n", json{{"type", "integer"}, {"minimum", 3}, {"description", "matrix size N (at least 3: the plane needs two directions)"}}},
                               {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
                               {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
-                              {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping},
+                              {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping}, {"linear_solver", linear_solver},
                               {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
                                             {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
                                                             "beyond --max-output-values numbers: 413)"}}},

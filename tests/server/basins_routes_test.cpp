@@ -64,7 +64,9 @@ TEST_F(BasinRoutes, PlainAnswerHoldsGridRowsRootsAndSummary) {
     EXPECT_EQ(m["converged"], converged);
     EXPECT_DOUBLE_EQ(m["converged_fraction"].get<double>(), converged / 144.0);
     EXPECT_EQ(m["basins"], roots.size());
-    if (converged) EXPECT_DOUBLE_EQ(m["mean_iterations"].get<double>(), iterations / converged);
+    if (converged) {
+      EXPECT_DOUBLE_EQ(m["mean_iterations"].get<double>(), iterations / converged);
+    }
   }
   EXPECT_GE(map["roots"].size(), 2u);
 }
