@@ -68,7 +68,7 @@ std::vector<BasinLegendEntry> legend_entries(const BasinResult& map) {
                                                 std::begin(kAllStatuses));
     bool occurs = false;
     for (const BasinMethodSummary& s : map.methods) occurs = occurs || s.status_counts[index] > 0;
-    if (occurs) legend.push_back({std::string(to_string(status)), status_color(status)});
+    if (occurs) legend.push_back({std::string(short_name(status)), status_color(status)});
   }
   return legend;
 }

@@ -351,7 +351,7 @@ test('a basin map streams in, matches the API pixel by pixel, and a pixel opens 
           continue;
         }
         converged += 1;
-        const hue = rgb(catalog.colors.basin_roots[per.root % catalog.colors.basin_roots.length]);
+        const hue = rgb(catalog.colors.basin_roots[per.root[c] % catalog.colors.basin_roots.length]);
         const scale = px.map((v, i) => (hue[i] ? v / hue[i] : 1));  // one shade factor for all three channels
         assert.ok(Math.max(...scale) - Math.min(...scale) < 0.05, `${m.method} row ${row.row} col ${c}: ${px} vs root ${hue}`);
       }
