@@ -14,10 +14,10 @@ template <LieGroup G>
 SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   const G& group = eq.group();
   const AlgebraChart<G> chart(eq, opt.differential);
-  if (opt.globalization != Globalization::none) return globalized_newton<G>(chart, zero_vector(group), opt, cb);
+  const auto v0 = eq.start_algebra();
+  if (opt.globalization != Globalization::none && v0) return globalized_newton<G>(chart, *v0, opt, cb);
   const bool krylov = detail::use_krylov(group, opt.linear_solver);
   SolverRun<G> run(eq, opt, cb, krylov);
-  const auto v0 = eq.start_algebra();
   if (!v0) return run.left_log_domain(eq.at(eq.start(), Equation<G>::Need::residual));
   typename G::Vector v = *v0;
   typename G::Vector u = zero_vector(group);

@@ -13,7 +13,7 @@ namespace lienewton {
 template <LieGroup G>
 SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb = {}) {
   const GroupChart<G> chart(eq, opt.differential);
-  if (opt.globalization != Globalization::none) return globalized_newton<G>(chart, eq.z(), opt, cb);
+  if (opt.globalization != Globalization::none) return globalized_newton<G>(chart, eq.start(), opt, cb);
   const G& group = eq.group();
   const bool krylov = detail::use_krylov(group, opt.linear_solver);
   SolverRun<G> run(eq, opt, cb, krylov);

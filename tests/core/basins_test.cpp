@@ -12,6 +12,7 @@
 #include "core/request_error.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
+#include "residual_oracle.hpp"
 
 namespace lienewton {
 namespace {
@@ -256,6 +257,28 @@ TEST(SolveStart, Y0MovesTheStartNotTheEquation) {
     EXPECT_EQ(r.iterations, px.iterations);
     if (px.root >= 0) {
       EXPECT_LT((r.y - map.roots[static_cast<std::size_t>(px.root)].y).norm(), 1e-10);
+    }
+  }
+}
+
+// The globalised Newton starts at y0 too: its first record is f(y0), by an independent oracle, for both
+// versions and both strategies (a start far from z: the residual at z differs by more than 0.1).
+TEST(SolveStart, GlobalizedNewtonStartsAtY0) {
+  SolveRequest r;
+  r.problem.n = 3;
+  r.h = 4.0;
+  const MatrixXd z = start_point(3, r.problem.seed);
+  const MatrixXd y0 = MatrixXd(SO3Group{}.times_exp(Matrix3d(z), Vector3d(1.2, -0.7, 0.4)));
+  r.y0 = y0;
+  const double at_y0 = oracle(ProblemKind::paper_linear, r.h, z, y0).residual;
+  ASSERT_GT(std::abs(at_y0 - oracle(ProblemKind::paper_linear, r.h, z, z).residual), 0.1);
+  for (Method m : {Method::newton_group, Method::newton_algebra}) {
+    for (Globalization g : {Globalization::line_search, Globalization::trust_region}) {
+      r.solver.method = m;
+      r.solver.globalization = g;
+      const SolveResult result = solve(r);
+      ASSERT_FALSE(result.trace.empty());
+      EXPECT_NEAR(result.trace.front().residual, at_y0, 1e-12 * (1 + at_y0)) << to_string(m) << " " << to_string(g);
     }
   }
 }
