@@ -116,7 +116,7 @@ TEST(SONLog, DomainMarginAtPi) {
 
 // log from one symmetric eigensolve with the planes beyond 3pi/4 logged on their own invariant block (son.cpp):
 // against R = Q blockdiag(rot theta_k, 1) Q^T with known angles, log R = Q blockdiag(theta_k J, 0) Q^T, to
-// 1e-14 relative, and the largest angle to 1e-14 absolute. One far plane, two (distinct and equal angles, a
+// 4e-14 relative, and the largest angle to 1e-14 absolute. One far plane, two (distinct and equal angles, a
 // 4-dimensional eigenspace of S), a plane at pi - 1e-8, next to a small and a tiny angle; and det -1 with a
 // far plane still refused.
 TEST(SONLog, FarPlanesOnTheirInvariantBlock) {
@@ -138,7 +138,9 @@ TEST(SONLog, FarPlanesOnTheirInvariantBlock) {
       const Mat r = q * d * q.transpose(), expected = q * l * q.transpose();
       double angle = 0;
       const Mat got = log(r, &angle);
-      EXPECT_LE((got - expected).norm() / expected.norm(), 1e-14) << "n = " << n << ", angle " << angles[0];
+      // 4e-14: forming R = Q D Q^T already rounds by ~n eps, and log near angle pi amplifies it (without FMA,
+      // as the sanitizer build compiles, n = 7 with two planes at 3.1 measured 1.31e-14).
+      EXPECT_LE((got - expected).norm() / expected.norm(), 4e-14) << "n = " << n << ", angle " << angles[0];
       EXPECT_NEAR(angle, *std::max_element(angles.begin(), angles.end()), 1e-14) << "n = " << n;
       if (n > 2 * static_cast<int>(angles.size())) {  // a reflection in a fixed direction: det -1
         Mat flip = Mat::Identity(n, n);
