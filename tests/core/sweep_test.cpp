@@ -2,7 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <map>
+#include <cmath>
+#include <vector>
 
 #include "core/request_error.hpp"
 #include "core/sweep.hpp"
@@ -10,23 +11,15 @@
 namespace lienewton {
 namespace {
 
-// The full default grid (3 methods x N = 2..15 x h = 2^-10..2^10) with the exact differential, once per problem.
-const SweepResult& default_sweep(ProblemKind problem) {
-  static std::map<ProblemKind, SweepResult> cache;
-  auto it = cache.find(problem);
-  if (it == cache.end()) {
-    SweepRequest req;
-    req.problem.kind = problem;
-    req.solver.differential = Differential::exact;
-    it = cache.emplace(problem, sweep(req)).first;
-  }
-  return it->second;
+// The full default grid (3 methods x N = 2..15 x h = 2^-10..2^10) with the exact differential.
+SweepResult default_sweep(ProblemKind problem) {
+  SweepRequest req;
+  req.problem.kind = problem;
+  req.solver.differential = Differential::exact;
+  return sweep(req);
 }
 
-class PaperClaims : public ::testing::TestWithParam<ProblemKind> {};
-
-TEST_P(PaperClaims, GridIsThePapers) {
-  const SweepResult& s = default_sweep(GetParam());
+void expect_grid_is_the_papers(const SweepResult& s) {
   ASSERT_EQ(s.cells.size(), 3u * 14u * 21u);
   EXPECT_EQ(s.cells.front().method, Method::fixed_point);
   EXPECT_EQ(s.cells.front().n, 2);
@@ -36,17 +29,17 @@ TEST_P(PaperClaims, GridIsThePapers) {
   EXPECT_EQ(s.cells.back().h, 1024.0);
 }
 
-TEST_P(PaperClaims, FixedPointFailsForLargeH) {
-  for (const auto& c : default_sweep(GetParam()).cells) {
+void expect_fixed_point_fails_for_large_h(const SweepResult& s) {
+  for (const auto& c : s.cells) {
     if (c.method == Method::fixed_point && c.h >= 4.0) {
       EXPECT_NE(c.status, Status::converged) << c.n << " " << c.h;
     }
   }
 }
 
-TEST_P(PaperClaims, NewtonConvergesQuadraticallyWhereItConverges) {
+void expect_newton_converges_quadratically_where_it_converges(const SweepResult& s) {
   std::vector<double> rates;
-  for (const auto& c : default_sweep(GetParam()).cells)
+  for (const auto& c : s.cells)
     if (c.method != Method::fixed_point && c.status == Status::converged && c.rate) rates.push_back(*c.rate);
   ASSERT_GT(rates.size(), 100u);
   std::sort(rates.begin(), rates.end());
@@ -59,9 +52,9 @@ TEST_P(PaperClaims, NewtonConvergesQuadraticallyWhereItConverges) {
   EXPECT_GT(static_cast<double>(quadratic), 0.85 * rates.size());  // measured: 95% (linear), 88% (sine)
 }
 
-TEST_P(PaperClaims, VersionOneConvergesOnMoreCellsThanVersionTwoAtSmallN) {
+void expect_version_one_converges_on_more_cells_than_version_two_at_small_n(const SweepResult& s) {
   int v1 = 0, v2 = 0;
-  for (const auto& c : default_sweep(GetParam()).cells) {
+  for (const auto& c : s.cells) {
     if (c.n < 3 || c.n > 6 || c.status != Status::converged) continue;
     if (c.method == Method::newton_group) ++v1;
     if (c.method == Method::newton_algebra) ++v2;
@@ -69,15 +62,46 @@ TEST_P(PaperClaims, VersionOneConvergesOnMoreCellsThanVersionTwoAtSmallN) {
   EXPECT_GT(v1, v2);
 }
 
-TEST_P(PaperClaims, EveryMethodConvergesForSmallH) {
-  for (const auto& c : default_sweep(GetParam()).cells) {
+void expect_every_method_converges_for_small_h(const SweepResult& s) {
+  for (const auto& c : s.cells) {
     if (c.h <= 1.0 / 64) {
       EXPECT_EQ(c.status, Status::converged) << to_string(c.method) << " n=" << c.n << " h=" << c.h;
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::paper_linear, ProblemKind::paper_sine));
+// One test per problem runs the grid once and checks every claim on it: ctest runs each test in its own
+// process, so a test per claim would recompute the 882-cell grid five times (10 minutes of CPU under ASan).
+class PaperClaims : public ::testing::TestWithParam<ProblemKind> {};
+
+TEST_P(PaperClaims, HoldOnTheFullGrid) {
+  const SweepResult s = default_sweep(GetParam());
+  {
+    SCOPED_TRACE("the grid is the paper's");
+    expect_grid_is_the_papers(s);
+  }
+  {
+    SCOPED_TRACE("the fixed point fails for h >= 4");
+    expect_fixed_point_fails_for_large_h(s);
+  }
+  {
+    SCOPED_TRACE("Newton converges quadratically where it converges");
+    expect_newton_converges_quadratically_where_it_converges(s);
+  }
+  {
+    SCOPED_TRACE("Version 1 converges on more cells than Version 2 at N = 3..6");
+    expect_version_one_converges_on_more_cells_than_version_two_at_small_n(s);
+  }
+  {
+    SCOPED_TRACE("every method converges for h <= 1/64");
+    expect_every_method_converges_for_small_h(s);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::paper_linear, ProblemKind::paper_sine),
+                         [](const ::testing::TestParamInfo<ProblemKind>& info) {
+                           return info.param == ProblemKind::paper_linear ? "PaperLinear" : "PaperSine";
+                         });
 
 TEST(Sweep, ResultDoesNotDependOnThreadCount) {
   SweepRequest req;
