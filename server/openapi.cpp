@@ -223,7 +223,10 @@ json schemas() {
                       "defaults to 16), plus the picture options below. Other N: 422."},
       {"type", "object"},
       {"properties", {{"kind", json{{"type", "string"}, {"enum", {"solve", "integrate"}}}}, {"width", width}, {"height", width},
-                      {"azimuth_deg", number("camera azimuth")}, {"elevation_deg", number("camera elevation")}}}};
+                      {"azimuth_deg", number("camera azimuth")}, {"elevation_deg", number("camera elevation")},
+                      {"upto", json{{"type", "integer"}, {"minimum", 0},
+                                    {"description", "draw frames 0..upto only, upto bold (a slider over iterates or "
+                                                    "time steps); 422 if there are not that many"}}}}}};
   s["RenderHeatmapRequest"] = json{
       {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
       {"type", "object"},

@@ -127,6 +127,16 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   options.height = take_int(request, "height", options.height, render::kMinImageSize, render::kMaxImageSize, false);
   options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
   options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
+  // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
+  const int upto = take_int(request, "upto", -1, 0, INT_MAX, false);
+  const auto draw = [&](std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start) {
+    if (upto >= static_cast<int>(frames.size())) {
+      throw ApiError(422, "unprocessable", "upto", "upto must be below the number of frames (" +
+                                                       std::to_string(frames.size()) + ")");
+    }
+    if (upto >= 0) frames.resize(static_cast<std::size_t>(upto) + 1);
+    return renderer.frames_png(frames, start, options);
+  };
   // An integrate request is told apart by kind, or by a field only integrate requests have.
   std::string kind = take_string(request, "kind");
   if (kind.empty()) {
@@ -148,7 +158,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     }
     if (frames.empty()) frames.emplace_back(result.y);
     start = r.problem.z ? Eigen::Matrix3d(*r.problem.z) : frames.front();
-    return renderer.frames_png(frames, start, options);
+    return draw(frames, start);
   }
   if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
   if (!request.contains("frames")) request["frames"] = 16;
@@ -166,7 +176,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   }
   if (frames.empty()) frames.emplace_back(result.y);
   start = frames.front();
-  return renderer.frames_png(frames, start, options);
+  return draw(frames, start);
 }
 
 std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,

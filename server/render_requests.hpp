@@ -22,7 +22,8 @@ struct RenderHooks {
 struct RenderCancelled {};
 
 // Frames: a SolveRequest (n = 3, iterates drawn) or an IntegrateRequest (kind = "integrate", or any of
-// integrator/t_end/frames present; frames defaults to 16), plus width/height/azimuth_deg/elevation_deg.
+// integrator/t_end/frames present; frames defaults to 16), plus width/height/azimuth_deg/elevation_deg and upto
+// (draw frames 0..upto only, for a slider over iterates or time steps; 422 naming upto if there are fewer).
 // N != 3 throws ApiError 422. Throws FieldError/RequestError for invalid requests.
 std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks);

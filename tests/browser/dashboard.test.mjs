@@ -140,9 +140,61 @@ test('a solve streams its trace; the chart ends with iterations + 1 points', asy
   assert.equal(await text('#solve [data-result="iterations"]'), String(result.iterations));
   assert.equal(await panel.locator('[data-result="status"] .badge').getAttribute('data-status'), result.status);
   assert.equal(Number(await text('#solve [data-result="residual"]')).toPrecision(3), result.residual.toPrecision(3));
-  // N = 3: the rotation frames of the iterates are shown.
-  await page.waitForFunction(() => document.querySelector('#solve-frames')?.naturalWidth > 0);
+  // N = 3: the rotation frames of the iterates are shown, the slider at the last iterate.
+  await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.naturalWidth > 0);
+  assert.equal(await page.locator('#solve-frames-slider').getAttribute('max'), String(result.iterations));
   await shot('solve');
+  // Moving the slider to iterate k shows the server's picture of iterates 0..k and the API's ||f(y_k)||.
+  const iterates = lines.filter((l) => l.type === 'iteration');
+  for (const k of [1, 0, result.iterations]) {
+    await page.locator('#solve-frames-slider').fill(String(k));
+    await page.locator(`#solve-frames[data-step="${k}"]`).waitFor();
+    assert.match(await text('#solve-frames-readout'), new RegExp(`^n = ${k}: .* = ${iterates[k].residual.toExponential(3).replace('+', '\\+')}$`));
+    await page.waitForFunction(() => document.querySelector('#solve-frames-img').complete);
+    await sameImage('#solve-frames-img', '/api/v1/render/frames', { ...JSON.parse(request.postData()), width: 512, height: 512, upto: k });
+  }
+});
+
+// The <img> shows exactly the PNG the API draws for body (POST), byte for byte.
+async function sameImage(selector, path, body) {
+  const shown = await page.evaluate(async (sel) => {
+    const bytes = new Uint8Array(await (await fetch(document.querySelector(sel).src)).arrayBuffer());
+    return Array.from(bytes);
+  }, selector);
+  const res = await fetch(base + path, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
+  assert.equal(res.status, 200);
+  assert.deepEqual(Buffer.from(shown), Buffer.from(await res.arrayBuffer()), `${selector} is not the API's picture of ${JSON.stringify(body)}`);
+}
+
+test('"What is this?" next to the problem, method and differential selects follows the select', async () => {
+  const panel = page.locator('#solve');
+  const about = (name) => panel.locator(`details.about[data-about="${name}"]`);
+  // Keyboard: Tab from the select reaches the disclosure, Enter opens it.
+  await panel.getByLabel('Method').focus();
+  await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.closest('details')?.dataset.about), 'method');
+  await page.keyboard.press('Enter');
+  assert.equal(await about('method').getAttribute('open'), '');
+  for (const [method, eq] of [['fixed-point', '(1.2)'], ['newton-group', '(3.5)'], ['newton-algebra', '(3.20)']]) {
+    await panel.getByLabel('Method').selectOption(method);
+    assert.ok((await about('method').locator('.about-text').textContent()).includes(eq), `${method}: ${eq}`);
+  }
+  for (const [d, eq] of [['finite-difference', '(3.18)'], ['dexpinv-0', '(3.10)'], ['dexpinv-1', '(3.11)'], ['exact', '(3.9)']]) {
+    await panel.getByLabel('Differential').selectOption(d);
+    assert.ok((await about('differential').locator('.about-text').textContent()).includes(eq), `${d}: ${eq}`);
+  }
+  for (const [p, g] of [['paper-linear', 'diag(diag(y,1),1)'], ['paper-sine', 'sin(y)'], ['rigid-body', 'I\u207b\u00b9 y\u1d40m']]) {
+    await panel.getByLabel('Problem').selectOption(p);
+    assert.ok((await about('problem').locator('.about-text').textContent()).includes(g), `${p}: ${g}`);
+  }
+  await panel.getByLabel('Problem').selectOption('paper-linear');
+  await panel.getByLabel('Method').selectOption('fixed-point');
+  await panel.getByLabel('Differential').selectOption('exact');
+  await about('method').locator('summary').click();
+  // Every panel's problem select has one.
+  for (const id of ['compare', 'stability', 'basins', 'speed']) {
+    assert.equal(await page.locator(`#${id} details.about[data-about="problem"]`).count(), 1, id);
+  }
 });
 
 test('a bad field shows the server message next to that field', async () => {
@@ -312,6 +364,22 @@ test('the work-precision chart has one series per ticked choice', async () => {
   await panel.locator('#energy-table tbody tr').nth(ticked - 1).waitFor({ timeout: 40_000 });
   assert.equal(await page.locator('#work-precision-chart').getAttribute('data-series'), String(ticked));
   assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));
+  // The rigid body's trajectory as rotation frames: a slider over the time steps of the chosen run.
+  const energyRequest = { problem: 'rigid-body', n: 3, t_end: 1, tol: 1e-13, max_iterations: 100, seed: 1, h: 0.125 };
+  await panel.locator('#trajectory-choice').selectOption({ index: 1 });
+  const choice = wp.series[1].choice;
+  const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice })).body;
+  assert.equal(await page.locator('#trajectory-frames-slider').getAttribute('max'), String(run.steps.length));
+  for (const k of [3, 0, run.steps.length]) {
+    await page.locator('#trajectory-frames-slider').fill(String(k));
+    await page.locator(`#trajectory-frames[data-step="${k}"]`).waitFor();
+    const energy = k ? run.steps[k - 1].energy : run.initial_energy;
+    assert.equal(await text('#trajectory-frames-readout'),
+      `step ${k}, t = ${k * 0.125}: E \u2212 E(0) = ${(energy - run.initial_energy) === 0 ? '0' : (energy - run.initial_energy).toExponential(3)}`);
+    await page.waitForFunction(() => document.querySelector('#trajectory-frames-img').complete);
+    await sameImage('#trajectory-frames-img', '/api/v1/render/frames',
+      { ...energyRequest, ...choice, kind: 'integrate', frames: run.steps.length, width: 512, height: 512, upto: k });
+  }
   await shot('speed');
 });
 

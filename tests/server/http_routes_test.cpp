@@ -151,6 +151,26 @@ TEST_F(Routes, RenderFramesAndHeatmap) {
   ASSERT_TRUE(frames_get);
   ASSERT_EQ(frames_get->status, 200) << frames_get->body;
   EXPECT_TRUE(is_png(frames_get->body));
+  // upto (the dashboard's slider) draws iterates 0..upto: the same picture as the solve stopped after upto
+  // iterations, and unlike the full run's.
+  const std::string solve = R"({"n":3,"h":0.5,"method":"newton-algebra","width":96,"height":96)";
+  auto first_two = c.Post("/api/v1/render/frames", solve + R"(,"upto":1})", "application/json");
+  auto stopped = c.Post("/api/v1/render/frames", solve + R"(,"max_iterations":1})", "application/json");
+  ASSERT_TRUE(first_two && stopped);
+  ASSERT_EQ(first_two->status, 200) << first_two->body;
+  ASSERT_EQ(stopped->status, 200) << stopped->body;
+  EXPECT_EQ(first_two->body, stopped->body);
+  EXPECT_NE(first_two->body, frames_get->body);
+  // A trajectory of 11 frames: upto 10 is the whole picture, upto 11 names the field.
+  const std::string steps = R"({"problem":"rigid-body","h":0.1,"t_end":1,"frames":11,"width":96,"height":96)";
+  auto whole = c.Post("/api/v1/render/frames", steps + "}", "application/json");
+  auto last = c.Post("/api/v1/render/frames", steps + R"(,"upto":10})", "application/json");
+  auto beyond = c.Post("/api/v1/render/frames", steps + R"(,"upto":11})", "application/json");
+  ASSERT_TRUE(whole && last && beyond);
+  ASSERT_EQ(last->status, 200) << last->body;
+  EXPECT_EQ(whole->body, last->body);
+  EXPECT_EQ(beyond->status, 422);
+  EXPECT_EQ(json::parse(beyond->body)["error"]["field"], "upto");
   auto not_so3 = c.Post("/api/v1/render/frames", R"({"n":4,"h":0.5})", "application/json");
   ASSERT_TRUE(not_so3);
   EXPECT_EQ(not_so3->status, 422);

@@ -1,10 +1,11 @@
 // Solve panel: one solve, streamed iteration by iteration into a log-residual chart, then the result,
-// the rotation frames of the iterates (N = 3) and the full trace as a table.
-import { postImage, stream } from '../shared/api.js';
+// the rotation frames of the iterates (N = 3, with a slider over n) and the full trace as a table.
+import { stream } from '../shared/api.js';
 import { residualChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
+import { frameStepper } from '../shared/frame_stepper.js';
 import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from '../shared/labels.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
 import { resultList } from '../shared/summary.js';
@@ -22,17 +23,14 @@ export function createSolvePanel(root) {
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to solve y = z exp(h g(y)).');
   const chartBox = el('div', { class: 'chart', id: 'solve-chart' });
   const summary = el('div', { class: 'result', id: 'solve-result' });
-  const frames = el('figure', { class: 'frames', hidden: true },
-    el('img', { id: 'solve-frames', alt: 'Rotation frames of the iterates y\u2099' }),
-    el('figcaption', {}));
-  const caption = 'Iterates y\u2099 as rotated frames (server-rendered PNG).';
+  const frames = frameStepper('solve-frames', 'Iterate n',
+    'Iterates y\u2080 \u2026 y\u2099 as rotated frames (server-rendered PNG): y\u2099 bold, earlier ones fainter, z dashed.');
   const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
-  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames), table));
+  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames.element), table));
 
   const newChart = () => residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
   let chart = null; // none before the first run: the box shows a placeholder
   const start = runner(form, live);
-  let frameUrl = null;
 
   async function run() {
     const request = { ...readCommon(form), method: value(form, 'method'),
@@ -43,7 +41,7 @@ export function createSolvePanel(root) {
     let queued = false;
     const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
     summary.replaceChildren();
-    frames.hidden = true;
+    frames.hide();
     table.hidden = true;
     chart = newChart(); // fresh axes, not the previous run's range
     live.textContent = 'Solving\u2026';
@@ -61,25 +59,11 @@ export function createSolvePanel(root) {
       summary.replaceChildren(resultList(result));
       table.querySelector('.table-wrap').replaceChildren(traceTable(records));
       table.hidden = false;
-      if (request.n === 3) await showFrames(request, signal);
+      // Every N = 3 solve, whatever its method or status: the server re-runs it to draw iterates 0..n.
+      if (request.n === 3) {
+        frames.show(request, records.length, (n) => `n = ${n}: \u2016f(y${subscript(n)})\u2016 = ${fmtExp(records[n].residual)}`);
+      }
     });
-  }
-
-  async function showFrames(request, signal) {
-    const img = frames.querySelector('img');
-    try {
-      const url = await postImage('/api/v1/render/frames', request, { signal });
-      if (frameUrl) URL.revokeObjectURL(frameUrl);
-      frameUrl = url;
-      img.src = url;
-      frames.querySelector('figcaption').textContent = caption;
-      frames.hidden = false;
-    } catch (err) {
-      if (err.name === 'AbortError') throw err;
-      frames.hidden = false;
-      img.removeAttribute('src');
-      frames.querySelector('figcaption').textContent = `Frames unavailable: ${err.message}`;
-    }
   }
 
   form.addEventListener('submit', (e) => { e.preventDefault(); run(); });
@@ -91,6 +75,10 @@ export function createSolvePanel(root) {
       run();
     },
   };
+}
+
+function subscript(n) {
+  return String(n).replace(/\d/g, (d) => String.fromCharCode(0x2080 + Number(d)));
 }
 
 // JSON text as a value; text that is not JSON goes to the server as it is, which names the field.

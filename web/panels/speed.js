@@ -4,7 +4,8 @@ import { ApiError, postJSON } from '../shared/api.js';
 import { energyChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix, number, range, select } from '../shared/fields.js';
-import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
+import { checkedValues, fillSelect, runner, value, wholeRange } from '../shared/form.js';
+import { frameStepper } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { statusBadge } from '../shared/summary.js';
@@ -52,11 +53,12 @@ export function createSpeedPanel(root) {
   const energyFig = el('section', { class: 'energy', hidden: true },
     el('h3', {}, 'Rigid body: energy error over time'), energyBox);
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
+  const trajectory = trajectoryFrames();
   root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
     el('p', { class: 'hint' }, 'One line per choice through its step sizes h (largest h at the left end); '
       + 'x is the solver\u2019s own CPU time (cpu_seconds), y the global error at t_end. p is the fitted order '
       + '(slope of log error against log h). Click a legend entry to hide or show its line.'),
-    wpBox, wpHover, energyFig, tableBox));
+    wpBox, wpHover, energyFig, tableBox, trajectory.element));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -69,6 +71,7 @@ export function createSpeedPanel(root) {
       tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'), seed: value(form, 'seed') };
     energyFig.hidden = true;
     tableBox.replaceChildren();
+    trajectory.hide();
     await start(async (signal, progress) => {
       if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
       const h = wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
@@ -92,9 +95,59 @@ export function createSpeedPanel(root) {
       drawEnergy(energyBox, runs);
       energyFig.hidden = false;
       tableBox.replaceChildren(integrateTable(runs));
+      trajectory.show(runs.map(({ choice, result }) => ({ choice, result,
+        request: { ...common, ...choice, h: value(form, 'energy_h'), kind: 'integrate' } })));
       live.textContent = `Done: work precision in ${fmtSeconds(wp.seconds)}, ${runs.length} energy runs.`;
     });
   });
+}
+
+// The integrate route returns a frame every max(1, floor(S / frames)) of the S = round(t_end / h) steps, and the
+// last (core/integrate.cpp); asking for frames = min(S, 1000) makes that every step up to 1000 steps.
+const MAX_FRAMES = 1000;
+function frameSteps(request, done) {
+  const planned = Math.round(request.t_end / request.h);
+  const frames = Math.max(1, Math.min(planned, MAX_FRAMES));
+  const every = Math.max(1, Math.floor(planned / frames));
+  const steps = [0];
+  for (let k = 1; k <= done; k += 1) if (k % every === 0 || k === planned) steps.push(k);
+  return { frames, steps };
+}
+
+// Rigid body: one choice's trajectory as rotation frames, a slider over its time steps, a select for the choice.
+function trajectoryFrames() {
+  const stepper = frameStepper('trajectory-frames', 'Time step',
+    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): y(t\u2096) bold, '
+    + 'earlier ones fainter, y(0) dashed.');
+  const picker = el('select', { id: 'trajectory-choice' });
+  const section = el('section', { class: 'trajectory', hidden: true },
+    el('h3', {}, 'Rigid body: the trajectory as rotation frames'),
+    el('div', { class: 'field' }, el('label', { for: picker.id }, 'Run'), picker), stepper.element);
+  let runs = [];
+  function draw() {
+    const { request, result } = runs[Number(picker.value)];
+    const { frames, steps } = frameSteps(request, result.steps.length);
+    stepper.show({ ...request, frames }, steps.length, (i) => {
+      const k = steps[i];
+      const energy = k ? result.steps[k - 1].energy : result.initial_energy;
+      return `step ${k}, t = ${Number((k * request.h).toPrecision(6))}: `
+        + `E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
+    });
+  }
+  picker.addEventListener('change', draw);
+  return {
+    element: section,
+    show(list) {
+      runs = list;
+      fillSelect(picker, runs.map(({ choice }, i) => [String(i), choiceLabel(choice)]), '0');
+      section.hidden = false;
+      draw();
+    },
+    hide() {
+      section.hidden = true;
+      stepper.hide();
+    },
+  };
 }
 
 // Energy relative to E(0), so that drift is visible whatever E's size; runs that stopped

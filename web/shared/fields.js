@@ -1,6 +1,7 @@
 // Builders for the form fields the panels share. Every field is wrapped in .field[data-field=<API name>]
 // with an error slot, so a server error naming that field lands right under it.
 import { el, uid } from './dom.js';
+import { EXPLAINED, explainer } from './explain.js';
 import { fillSelect } from './form.js';
 
 export function field(name, labelText, control, hint) {
@@ -15,10 +16,13 @@ export function field(name, labelText, control, hint) {
     el('p', { class: 'field-error', id: errId, 'aria-live': 'polite' }));
 }
 
+// Problem, method and differential selects carry a "What is this?" disclosure for their current value.
 export function select(name, labelText, options, value, hint) {
   const s = el('select', { name });
   fillSelect(s, options, value);
-  return field(name, labelText, s, hint);
+  const wrapper = field(name, labelText, s, hint);
+  if (EXPLAINED.includes(name)) wrapper.querySelector('.field-error').before(explainer(s));
+  return wrapper;
 }
 
 export function number(name, labelText, value, hint) {
