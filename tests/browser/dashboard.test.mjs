@@ -140,6 +140,13 @@ test('a solve streams its trace; the chart ends with iterations + 1 points', asy
   assert.equal(await text('#solve [data-result="iterations"]'), String(result.iterations));
   assert.equal(await panel.locator('[data-result="status"] .badge').getAttribute('data-status'), result.status);
   assert.equal(Number(await text('#solve [data-result="residual"]')).toPrecision(3), result.residual.toPrecision(3));
+  // The reason in mathematical notation, not the API's ASCII (||f(y)||, pi, !=).
+  const why = await text('#solve [data-result="reason"]');
+  assert.doesNotMatch(why, /\|\||\bpi\b|!=/);
+  assert.ok(why.includes('\u2016f(y)\u2016'), why);
+  // Iteration ticks are whole numbers (no 2.5 on a phone-wide chart).
+  const ticks = (await page.locator('#solve-chart').getAttribute('data-x-ticks')).split(' ');
+  assert.ok(ticks.length > 1 && ticks.every((t) => /^\d+$/.test(t)), ticks.join(' '));
   // N = 3: the rotation frames of the iterates are shown, the slider at the last iterate.
   await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.naturalWidth > 0);
   assert.equal(await page.locator('#solve-frames-slider').getAttribute('max'), String(result.iterations));

@@ -6,7 +6,7 @@ import { el } from '../shared/dom.js';
 import { actions, choiceMatrix } from '../shared/fields.js';
 import { checkedValues, runner } from '../shared/form.js';
 import { entries, entry } from '../shared/catalog.js';
-import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label } from '../shared/labels.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label, mathText } from '../shared/labels.js';
 import { limitFields, problemFields, readCommon } from '../shared/request.js';
 import { statusBadge } from '../shared/summary.js';
 
@@ -86,7 +86,7 @@ function resultsTable(rows) {
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, rows.map(([name, r, ttol]) => el('tr', {},
-      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', { class: 'why' }, r.reason ?? ''),
+      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', { class: 'why' }, mathText(r.reason)),
       el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
       el('td', { 'data-col': 'time-to-tol' }, ttol === null ? 'not reached' : fmtSeconds(ttol)),
       el('td', {}, fmtSeconds(r.cpu_seconds))))));

@@ -5,7 +5,7 @@ import { ApiError, postImage, stream } from '../shared/api.js';
 import { el } from '../shared/dom.js';
 import { actions, checkboxes, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
-import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label } from '../shared/labels.js';
+import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label, mathText } from '../shared/labels.js';
 import { NO_VALUE, isOutlier, metricScale, metricValue, rampCss } from '../shared/colormap.js';
 import { createGrid } from './grid.js';
 import { statusBadge } from '../shared/summary.js';
@@ -62,7 +62,7 @@ export function createStabilityPanel(root, { openSolve }) {
     const row = (key, term, v) => [el('dt', {}, term), el('dd', { dataset: { detail: key } }, v)];
     details.replaceChildren(el('h3', {}, 'Cell'), el('dl', { class: 'summary' },
       row('method', 'Method', label(METHODS, cell.method)), row('n', 'N', String(cell.n)), row('h', 'h', fmtH(cell.h)),
-      row('status', 'Status', statusBadge(cell.status)), row('reason', 'Why', cell.reason ?? ''),
+      row('status', 'Status', statusBadge(cell.status)), row('reason', 'Why', mathText(cell.reason)),
       row('iterations', 'Iterations', String(cell.iterations)), row('rate', 'Rate r', fmtRate(cell.rate)),
       row('residual', 'Final \u2016f\u2016', fmtExp(cell.residual))),
     el('button', { type: 'button', onclick: () => openCell(cell) }, 'Open in Solve'));

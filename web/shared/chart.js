@@ -87,7 +87,11 @@ export function residualChart(container, labels) {
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
-    axes: [{ label: 'iteration n' }, logAxis('\u2016f(y\u2099)\u2016')],
+    // Iterations are whole numbers: ticks at steps of 1, 2, 5, 10, ... only.
+    // The drawn ticks are recorded in data-x-ticks for the browser test.
+    axes: [{ label: 'iteration n', incrs: [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000],
+      values: (u, splits) => { container.dataset.xTicks = splits.join(' '); return splits.map(String); } },
+    logAxis('\u2016f(y\u2099)\u2016')],
     legend: { live: true },
     hooks: { draw: [drawMarkers] },
   };

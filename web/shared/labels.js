@@ -25,6 +25,24 @@ export function label(list, value) {
   return hit ? hit[1] : value;
 }
 
+// The server's reasons are ASCII (||f||, pi, !=, z^-1, y_3, 1/2 ||f||^2) for curl users; the page shows them
+// in mathematical notation.
+const SUBSCRIPTS = '\u2080\u2081\u2082\u2083\u2084\u2085\u2086\u2087\u2088\u2089';
+export function mathText(text) {
+  return String(text ?? '')
+    .replace(/\|\|/g, '\u2016')
+    .replace(/\bpi\b/g, '\u03c0')
+    .replace(/!=/g, '\u2260')
+    .replace(/<=/g, '\u2264')
+    .replace(/>=/g, '\u2265')
+    .replace(/\^-1/g, '\u207b\u00b9')
+    .replace(/\^2/g, '\u00b2')
+    .replace(/\^T/g, '\u1d40')
+    .replace(/\b1\/2 /g, '\u00bd ')
+    .replace(/\b([yv])_(\d+)/g, (_, v, d) => v + [...d].map((c) => SUBSCRIPTS[Number(c)]).join(''))
+    .replace(/f~/g, 'f\u0303');
+}
+
 // Exponential with 3 decimals: readable and still parseable by Number().
 export function fmtExp(x) {
   if (x === null || x === undefined) return '\u2014';

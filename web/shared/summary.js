@@ -1,6 +1,6 @@
 // The result summary and the status badge, shared by Solve and Compare.
 import { el } from './dom.js';
-import { STATUSES, fmtExp, fmtRate, fmtSeconds } from './labels.js';
+import { STATUSES, fmtExp, fmtRate, fmtSeconds, mathText } from './labels.js';
 
 export function statusBadge(status) {
   const color = STATUSES[status]?.color ?? '#777';
@@ -12,7 +12,7 @@ export function resultList(result) {
   const row = (key, term, value) => [el('dt', {}, term), el('dd', { dataset: { result: key } }, value)];
   return el('dl', { class: 'summary' },
     row('status', 'Status', statusBadge(result.status)),
-    row('reason', 'Why', result.reason || STATUSES[result.status]?.text || ''),
+    row('reason', 'Why', mathText(result.reason || STATUSES[result.status]?.text)),
     row('iterations', 'Iterations', String(result.iterations)),
     row('rate', 'Rate r', rateText(result)),
     row('residual', 'Final \u2016f(y)\u2016', fmtExp(result.residual)),
