@@ -13,21 +13,11 @@
 #include "core/solve.hpp"
 #include "core/solvers/run_method.hpp"
 #include "core/start_point.hpp"
+#include "paper_request.hpp"
 #include "residual_oracle.hpp"
 
 namespace lienewton {
 namespace {
-
-SolveRequest paper_request(ProblemKind problem, int n, double h, Method method, Differential d, Globalization g) {
-  SolveRequest req;
-  req.problem.kind = problem;
-  req.problem.n = n;
-  req.h = h;
-  req.solver.method = method;
-  req.solver.differential = d;
-  req.solver.globalization = g;
-  return req;
-}
 
 struct Case {
   Method method;

@@ -14,6 +14,7 @@
 #include "core/groups/son.hpp"
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
+#include "paper_request.hpp"
 #include "residual_oracle.hpp"
 
 namespace lienewton {
@@ -21,22 +22,12 @@ namespace {
 
 using Eigen::MatrixXd;
 
-SolveResult solve_json_like(ProblemKind problem, int n, double h, Method method, Differential d) {
-  SolveRequest req;
-  req.problem.kind = problem;
-  req.problem.n = n;
-  req.h = h;
-  req.solver.method = method;
-  req.solver.differential = d;
-  return solve(req);
-}
-
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Found 1: {"problem":"paper-linear","n":5,"h":16,"method":"newton-algebra","differential":"dexpinv-1"}
 // reported ||f~|| = 0.119 where ||f(y)|| = 6.26. The residual is now f of (3.6) at the returned y.
 TEST(HonestNumbers, VersionTwoReportsTheGroupResidual) {
-  const SolveResult r = solve_json_like(ProblemKind::paper_linear, 5, 16, Method::newton_algebra, Differential::dexpinv_1);
+  const SolveResult r = solve(paper_request(ProblemKind::paper_linear, 5, 16, Method::newton_algebra, Differential::dexpinv_1));
   const Oracle o = oracle(ProblemKind::paper_linear, 16, start_point(5, 1), r.y);
   EXPECT_NEAR(r.residual, o.residual, 1e-9 * (1 + o.residual)) << r.reason;
   ASSERT_TRUE(r.algebra_residual.has_value());
@@ -47,7 +38,7 @@ TEST(HonestNumbers, VersionTwoReportsTheGroupResidual) {
 // Found 2: {"problem":"paper-linear","n":3,"h":1024,"method":"newton-algebra","differential":"exact"} said
 // stagnated at ||f~|| = 1.08e-12; its y solves (1.1) to 7.8e-12 while ||f(y)|| = 8 pi.
 TEST(HonestNumbers, OffBranchSolutionOfVersionTwoAtLargeH) {
-  const SolveResult r = solve_json_like(ProblemKind::paper_linear, 3, 1024, Method::newton_algebra, Differential::exact);
+  const SolveResult r = solve(paper_request(ProblemKind::paper_linear, 3, 1024, Method::newton_algebra, Differential::exact));
   const Oracle o = oracle(ProblemKind::paper_linear, 1024, start_point(3, 1), r.y);
   EXPECT_EQ(r.status, Status::off_branch) << r.reason;
   EXPECT_LT(o.defect, 1e-10);
@@ -60,7 +51,7 @@ TEST(HonestNumbers, OffBranchSolutionOfVersionTwoAtLargeH) {
 // Found 3: {"problem":"paper-sine","n":2,"h":512,"method":"newton-group","differential":"exact"} sat at
 // 1.4e-13 from iteration 4 and was reported max_iterations after 96 more.
 TEST(HonestNumbers, FloorIncludesConditioning) {
-  const SolveResult r = solve_json_like(ProblemKind::paper_sine, 2, 512, Method::newton_group, Differential::exact);
+  const SolveResult r = solve(paper_request(ProblemKind::paper_sine, 2, 512, Method::newton_group, Differential::exact));
   EXPECT_TRUE(r.status == Status::stagnated || r.status == Status::converged) << r.reason;
   EXPECT_LT(r.iterations, 15);
   const Oracle o = oracle(ProblemKind::paper_sine, 512, start_point(2, 1), r.y);
@@ -75,7 +66,7 @@ TEST(HonestNumbers, ResultDescribesTheReturnedIterate) {
   for (double h : {64.0, 128.0, 256.0, 512.0, 1024.0})
     for (Method m : kAllMethods)
       for (ProblemKind p : {ProblemKind::paper_linear, ProblemKind::paper_sine}) {
-        const SolveResult r = solve_json_like(p, 4, h, m, Differential::exact);
+        const SolveResult r = solve(paper_request(p, 4, h, m, Differential::exact));
         ASSERT_GE(r.iterate, 0);
         ASSERT_LT(r.iterate, static_cast<int>(r.trace.size()));
         EXPECT_EQ(r.trace[r.iterate].residual, r.residual) << r.reason;
@@ -123,7 +114,7 @@ TEST(HonestNumbers, TinyAnglesAreNotZero) {
   const Eigen::Vector3d l = so3::log(so3::exp(w));
   EXPECT_NEAR(l.stableNorm() / w.stableNorm(), 1.0, 1e-12);
   for (Differential d : {Differential::finite_difference, Differential::exact}) {
-    const SolveResult r = solve_json_like(ProblemKind::paper_linear, 6, 0.5, Method::newton_group, d);
+    const SolveResult r = solve(paper_request(ProblemKind::paper_linear, 6, 0.5, Method::newton_group, d));
     EXPECT_LT(r.trace[0].angle, 1e-14) << to_string(d);
   }
   double angle = 0;
@@ -138,7 +129,7 @@ TEST(HonestNumbers, OrthogonalityAndDivergenceReason) {
     for (double h : {1.0, 64.0, 1024.0})
       for (Method m : kAllMethods)
         for (Differential d : kAllDifferentials) {
-          const SolveResult r = solve_json_like(p, 7, h, m, d);
+          const SolveResult r = solve(paper_request(p, 7, h, m, d));
           for (const auto& t : r.trace) EXPECT_LT(t.orthogonality_error, 1e-13);
           if (r.status == Status::diverged) { EXPECT_NE(r.reason.find(" = "), std::string::npos) << r.reason; }
           if (r.rate_reliable) {

@@ -114,6 +114,22 @@ TEST(SONLog, DomainMarginAtPi) {
   EXPECT_THROW((void)log(-Mat::Identity(4, 4)), LogDomainError);
 }
 
+// blockdiag(rot theta_k, 1) and blockdiag(theta_k J, 0), J = [0 -1; 1 0]: a rotation with known angles and its log.
+struct KnownAngles {
+  Mat rotation, generator;
+};
+KnownAngles known_angles(int n, const std::vector<double>& angles) {
+  KnownAngles k{Mat::Identity(n, n), Mat::Zero(n, n)};
+  for (std::size_t p = 0; p < angles.size(); ++p) {
+    const int i = 2 * static_cast<int>(p);
+    const double t = angles[p];
+    k.rotation.block<2, 2>(i, i) << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
+    k.generator(i, i + 1) = -t;
+    k.generator(i + 1, i) = t;
+  }
+  return k;
+}
+
 // log from one symmetric eigensolve with the planes beyond 3pi/4 logged on their own invariant block (son.cpp):
 // against R = Q blockdiag(rot theta_k, 1) Q^T with known angles, log R = Q blockdiag(theta_k J, 0) Q^T, to
 // 4e-14 relative, and the largest angle to 1e-14 absolute. One far plane, two (distinct and equal angles, a
@@ -127,14 +143,8 @@ TEST(SONLog, FarPlanesOnTheirInvariantBlock) {
     for (const auto& angles : angle_sets) {
       if (2 * static_cast<int>(angles.size()) > n) continue;
       const Mat q = random_rotation(n, rng);
-      Mat d = Mat::Identity(n, n), l = Mat::Zero(n, n);
-      for (std::size_t p = 0; p < angles.size(); ++p) {
-        const int i = 2 * static_cast<int>(p);
-        const double t = angles[p];
-        d.block<2, 2>(i, i) << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
-        l(i, i + 1) = -t;
-        l(i + 1, i) = t;
-      }
+      const KnownAngles k = known_angles(n, angles);
+      const Mat &d = k.rotation, &l = k.generator;
       const Mat r = q * d * q.transpose(), expected = q * l * q.transpose();
       double angle = 0;
       const Mat got = log(r, &angle);
@@ -161,14 +171,8 @@ TEST(SONExp, PadeAgainstKnownAngles) {
     for (const auto& angles : angle_sets) {
       if (2 * static_cast<int>(angles.size()) > n) continue;
       const Mat q = random_rotation(n, rng);
-      Mat d = Mat::Identity(n, n), l = Mat::Zero(n, n);
-      for (std::size_t p = 0; p < angles.size(); ++p) {
-        const int i = 2 * static_cast<int>(p);
-        const double t = angles[p];
-        d.block<2, 2>(i, i) << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
-        l(i, i + 1) = -t;
-        l(i + 1, i) = t;
-      }
+      const KnownAngles k = known_angles(n, angles);
+      const Mat &d = k.rotation, &l = k.generator;
       const Mat v = q * l * q.transpose(), expected = q * d * q.transpose();
       const Mat x = exp(0.5 * (v - v.transpose()));
       const double theta = *std::max_element(angles.begin(), angles.end());
