@@ -198,10 +198,16 @@ test('"What is this?" next to the problem, method and differential selects follo
   await panel.getByLabel('Method').selectOption('fixed-point');
   await panel.getByLabel('Differential').selectOption('exact');
   await about('method').locator('summary').click();
-  // Every panel's problem select has one.
+  // Every panel's problem select has one; tick tables and method lists explain every choice they offer.
   for (const id of ['compare', 'stability', 'basins', 'speed']) {
     assert.equal(await page.locator(`#${id} details.about[data-about="problem"]`).count(), 1, id);
   }
+  const listed = async (id, about, value) => page.locator(`#${id} details.about[data-about="${about}"] dd[data-value="${value}"]`).textContent();
+  assert.ok((await listed('compare', 'method differential', 'newton-algebra')).includes('(3.20)'));
+  assert.ok((await listed('compare', 'method differential', 'finite-difference')).includes('(3.18)'));
+  assert.ok((await listed('speed', 'integrator method differential', 'implicit-euler')).includes('(1.1)'));
+  assert.ok((await listed('stability', 'method', 'fixed-point')).includes('(1.2)'));
+  assert.ok((await listed('basins', 'method', 'newton-group')).includes('(3.5)'));
 });
 
 test('a bad field shows the server message next to that field', async () => {
@@ -472,6 +478,12 @@ test('screenshots of every panel at 1440x900 and 390x844', async () => {
       await page.evaluate(() => window.scrollTo(0, 0));
       await page.waitForTimeout(150); // charts follow the new width on the next frame
       await shot(`${id}-${w}x${hgt}`);
+      // Each legend entry is one piece: its marker on the first line of its label.
+      const apart = await page.evaluate((panel) => [...document.querySelectorAll(`#${panel} .u-legend .u-series`)]
+        .filter((s) => s.querySelector('.u-marker') && s.offsetParent !== null)
+        .map((s) => [s.querySelector('.u-marker').getBoundingClientRect(), s.querySelector('.u-label').getBoundingClientRect(), s.innerText])
+        .filter(([m, l]) => m.bottom <= l.top || m.top >= l.bottom).map(([, , t]) => t), id);
+      assert.deepEqual(apart, [], `${id} at ${w}x${hgt}: legend markers apart from their labels`);
     }
   }
   await page.setViewportSize({ width: 1280, height: 860 });

@@ -17,7 +17,7 @@ const DARKEST = catalog.colors.basin_darkest;
 export function createBasinsPanel(root, { openSolve }) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Basin map request' },
     problemFields({ ...DEFAULTS, h: 4 }),
-    checkboxes('methods', 'Methods', METHODS, METHODS.map(([m]) => m)),
+    checkboxes('methods', 'Methods', METHODS, METHODS.map(([m]) => m), ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'exact'),
     number('size', 'Pixels per side', 96, 'The grid is size \u00d7 size starts (at most 512)'),
     number('r', 'Half-width r of the square', Number(Math.PI.toFixed(6)), 'a, b in [\u2212r, r]; default \u03c0'),

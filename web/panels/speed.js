@@ -45,7 +45,7 @@ export function createSpeedPanel(root) {
     number('seed', 'Seed', 1),
     actions());
   form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS_SHORT, DEFAULT_TICKS,
-    describe), form.querySelector('.field[data-field="h"]'));
+    describe, ['integrator', 'method', 'differential']), form.querySelector('.field[data-field="h"]'));
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the choices to compare and press Run.');
   const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
   const energyBox = el('div', { class: 'chart', id: 'energy-chart' });

@@ -15,7 +15,7 @@ const METHOD_ORDER = METHODS.map(([m]) => m);
 export function createStabilityPanel(root, { openSolve }) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Sweep request' },
     select('problem', 'Problem', PROBLEMS, 'paper-linear'),
-    checkboxes('methods', 'Methods', METHODS, METHOD_ORDER),
+    checkboxes('methods', 'Methods', METHODS, METHOD_ORDER, ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
     range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
     range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2^k; the paper: \u221210 to 10'),

@@ -2,7 +2,7 @@
 // container's width, and records how many points and series it draws in data-points / data-series so
 // that the browser tests check what is actually plotted.
 import uPlot from '../vendor/uPlot.esm.js';
-import { SERIES_COLORS, SERIES_STYLES, fmtExp, fmtH, fmtSeconds } from './labels.js';
+import { SERIES_STYLES, fmtExp, fmtH, fmtSeconds } from './labels.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.
 function logAxisValues(u, splits, axisIdx) {
@@ -68,11 +68,6 @@ function record(container, plot) {
   container.dataset.series = String(plot.series.length - 1);
 }
 
-// One coloured series; the legend shows values in the same format as the tables.
-function line(label, i, extra = {}) {
-  return { label, stroke: SERIES_COLORS[i % SERIES_COLORS.length], width: 2, value: (u, v) => fmtExp(v), ...extra };
-}
-
 // A series in the i-th server style: colour and dash, with markers (drawn by drawMarkers) so that identical
 // curves stay visible under one another.
 function styledLine(label, i) {
@@ -112,8 +107,8 @@ export function residualChart(container, labels) {
 const MARKERS = {
   circle: (c, x, y, r) => c.arc(x, y, r, 0, 2 * Math.PI),
   square: (c, x, y, r) => c.rect(x - r, y - r, 2 * r, 2 * r),
-  triangle_up: (c, x, y, r) => { c.moveTo(x, y - r); c.lineTo(x + r, y + r); c.lineTo(x - r, y + r); c.closePath(); },
-  triangle_down: (c, x, y, r) => { c.moveTo(x, y + r); c.lineTo(x + r, y - r); c.lineTo(x - r, y - r); c.closePath(); },
+  'triangle-up': (c, x, y, r) => { c.moveTo(x, y - r); c.lineTo(x + r, y + r); c.lineTo(x - r, y + r); c.closePath(); },
+  'triangle-down': (c, x, y, r) => { c.moveTo(x, y + r); c.lineTo(x + r, y - r); c.lineTo(x - r, y - r); c.closePath(); },
   diamond: (c, x, y, r) => { c.moveTo(x, y - r); c.lineTo(x + r, y); c.lineTo(x, y + r); c.lineTo(x - r, y); c.closePath(); },
   cross: (c, x, y, r) => { c.moveTo(x - r, y - r); c.lineTo(x + r, y + r); c.moveTo(x + r, y - r); c.lineTo(x - r, y + r); },
 };
@@ -124,14 +119,19 @@ export function seriesStyle(i) {
 }
 
 // Draws each shown series' markers at its points (uPlot draws only circles).
+// Hollow, and each series' a little smaller than the one before: where curves coincide (the same iterates
+// by two methods) every marker's outline still shows around the later ones.
 function drawMarkers(u) {
   const c = u.ctx;
-  const r = 4.5 * devicePixelRatio;
   c.save();
   c.lineWidth = 1.5 * devicePixelRatio;
   for (let i = 1; i < u.series.length; i++) {
     const s = u.series[i];
     if (!s.show) continue;
+    const r = (6 - 0.8 * ((i - 1) % 4)) * devicePixelRatio;
+    const shape = MARKERS[s._marker];
+    // A marker name the server's style table has and this map lacks is an error, not a line without markers.
+    if (!shape) throw new Error(`no marker shape for "${s._marker}"`);
     const [xs, ys] = u.mode === 2 ? u.data[i] : [u.data[0], u.data[i]];
     c.beginPath();
     for (let k = 0; k < xs.length; k++) {
@@ -139,11 +139,10 @@ function drawMarkers(u) {
       const x = u.valToPos(xs[k], 'x', true);
       const y = u.valToPos(ys[k], 'y', true);
       c.moveTo(x + r, y);
-      MARKERS[s._marker]?.(c, x, y, r);
+      shape(c, x, y, r);
     }
-    c.fillStyle = s._color;
     c.strokeStyle = s._color;
-    if (s._marker === 'cross') c.stroke(); else { c.fill(); c.stroke(); }
+    c.stroke();
   }
   c.restore();
 }
@@ -221,7 +220,8 @@ export function workPrecisionChart(container, runs, hover) {
 // Rigid-body energy error over time, |E(t) - E(0)| / E(0) on a log axis so that drifts of very different
 // sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same step times.
 export function energyChart(container, times, runs) {
-  const series = [{ label: 't' }].concat(runs.map((r, i) => line(r.label, i, { points: { show: true, size: 5 } })));
+  // The work-precision chart's styles (same choice, same colour and dash): coinciding runs stay visible.
+  const series = [{ label: 't' }].concat(runs.map((r, i) => styledLine(r.label, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },

@@ -1,7 +1,7 @@
 // "What is this?" for the choices a paper reader meets in the forms: each problem's g, each method and each
 // differential, with the equation numbers of Owren & Welfert (BIT 2000). A value not listed here (a new one
 // the server added) falls back to the server catalog's one-line description.
-import { entry } from './catalog.js';
+import { entries, entry } from './catalog.js';
 import { el } from './dom.js';
 
 const EXPLAIN = {
@@ -28,6 +28,13 @@ const EXPLAIN = {
     'newton-algebra': 'Newton Version 2, in the algebra (3.20): write y\u2099 = z\u00b7exp(v\u2099), solve '
       + 'df\u0303\u1d65\u2099(u\u2099) + f\u0303(v\u2099) = 0 with f\u0303(v) = v \u2212 h g(z\u00b7exp(v)) (3.21), '
       + 'then v\u2099\u208a\u2081 = v\u2099 + u\u2099: classical Newton on the algebra, through (3.22).',
+  },
+  integrator: {
+    'implicit-euler': 'Implicit Lie group Euler (1.1): y\u207d\u1d4f\u207a\u00b9\u207e = y\u207d\u1d4f\u207e\u00b7exp(h g(y\u207d\u1d4f\u207a\u00b9\u207e)), '
+      + 'one equation (3.6) per step, solved by the chosen method; first order.',
+    'dirk-cg2': 'A two-stage L-stable, stiffly accurate SDIRK method in Crouch\u2013Grossman form (section 6): '
+      + 'each stage is an equation y = z\u00b7exp(\u03b3h g(y)), \u03b3 = 1 \u2212 1/\u221a2, of the same kind, '
+      + 'solved in sequence by the chosen method; second order.',
   },
   differential: {
     'finite-difference': 'Finite differences (3.18): df\u1d67(u) \u2248 (f(y\u00b7exp(tu)) \u2212 f(y)) / t with '
@@ -59,4 +66,12 @@ export function explainer(select) {
   select.addEventListener('input', sync);
   sync();
   return box;
+}
+
+// One disclosure for a tick table or checkbox list: every value of the named enums with its explanation.
+export function explainerList(names) {
+  return el('details', { class: 'about', dataset: { about: names.join(' ') } },
+    el('summary', {}, 'What do these mean?'),
+    el('dl', { class: 'about-text' }, names.flatMap((name) => entries(name).flatMap((e) => [
+      el('dt', {}, e.label), el('dd', { dataset: { value: e.value } }, explanation(name, e.value))]))));
 }

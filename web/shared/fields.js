@@ -1,7 +1,7 @@
 // Builders for the form fields the panels share. Every field is wrapped in .field[data-field=<API name>]
 // with an error slot, so a server error naming that field lands right under it.
 import { el, uid } from './dom.js';
-import { EXPLAINED, explainer } from './explain.js';
+import { EXPLAINED, explainer, explainerList } from './explain.js';
 import { fillSelect } from './form.js';
 
 export function field(name, labelText, control, hint) {
@@ -54,11 +54,13 @@ export function stepSize(value) {
   return wrapper;
 }
 
-export function checkboxes(name, legend, options, checked) {
+// explained: enum names whose values the boxes are (e.g. ['method']), explained in a disclosure.
+export function checkboxes(name, legend, options, checked, explained = []) {
   return el('fieldset', { class: 'field checks', dataset: { field: name } },
     el('legend', {}, legend),
     options.map(([v, text]) => el('label', { class: 'check' },
       el('input', { type: 'checkbox', name, value: v, checked: checked.includes(v) }), ' ', text)),
+    explained.length ? explainerList(explained) : null,
     el('p', { class: 'field-error', 'aria-live': 'polite' }));
 }
 
@@ -85,7 +87,8 @@ export function actions() {
 // A table of checkboxes: one row per method (or integrator + method), one column per differential.
 // Rows marked single (fixed point: no differential) get one box sending `${row}|exact`.
 // Each box is labelled in full for screen readers; values are `${row}|${column}`.
-export function choiceMatrix(name, legend, rows, columns, checked, describe) {
+// explained: the enums the rows and columns are made of, explained in a disclosure under the table.
+export function choiceMatrix(name, legend, rows, columns, checked, describe, explained = ['method', 'differential']) {
   const box = (v, text) => el('input', { type: 'checkbox', name, value: v, checked: checked.includes(v), 'aria-label': text });
   const body = rows.map(({ key, text, single }) => el('tr', {},
     el('th', { scope: 'row' }, text),
@@ -98,5 +101,6 @@ export function choiceMatrix(name, legend, rows, columns, checked, describe) {
     el('div', { class: 'table-wrap' }, el('table', {},
       el('thead', {}, el('tr', {}, el('th', {}, ''), columns.map(([, t]) => el('th', { scope: 'col' }, t)))),
       el('tbody', {}, body))),
+    explainerList(explained),
     el('p', { class: 'field-error', 'aria-live': 'polite' }));
 }

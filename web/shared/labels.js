@@ -14,9 +14,6 @@ export const METRICS = choices('heatmap_metric');
 // a one-line description.
 export const STATUSES = Object.fromEntries(entries('status').map((s) => [s.value, { color: s.color, text: s.description }]));
 
-export const SERIES_COLORS = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000',
-  '#8c564b', '#7f7f7f', '#bcbd22'];
-
 // Colour x dash x marker per series, distinct for 24 series: the renderer's own table, so PNGs match.
 export const SERIES_STYLES = catalog.series_styles;
 

@@ -1,0 +1,53 @@
+// Click-to-complete time of every dashboard panel with its default form: from the click on Run until the run
+// has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (frames, heatmap,
+// basin PNG). Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
+// the machine's load average before and after, since the machine is shared.
+//   node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions=3]
+import { loadavg } from 'node:os';
+import { resolve } from 'node:path';
+import { launchChromium, loadPlaywright, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
+
+const [binary, webRoot, reps = '3'] = process.argv.slice(2);
+if (!binary || !webRoot) {
+  console.error('usage: node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions]');
+  process.exit(2);
+}
+watchdog(1_800_000);
+const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
+const load = () => loadavg().map((x) => x.toFixed(2)).join(' ');
+const PANELS = [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Basins', 'basins'],
+  ['Speed vs accuracy', 'speed']];
+
+// Resolves to the ms from the click to a finished run with its pictures loaded; throws if the run failed.
+async function clickToComplete(page, id) {
+  const form = page.locator(`#${id} form.controls`);
+  const t0 = await page.evaluate(() => performance.now());
+  await form.getByRole('button', { name: 'Run' }).click();
+  const done = await page.waitForFunction((panel) => {
+    const f = document.querySelector(`#${panel} form.controls`);
+    if (f.getAttribute('aria-busy') === 'true') return 0;
+    const pictures = [...document.querySelectorAll(`#${panel} img[src]`)].filter((img) => img.offsetParent !== null);
+    return pictures.every((img) => img.complete && img.naturalWidth > 0) ? performance.now() : 0;
+  }, id, { polling: 'raf', timeout: 600_000 });
+  const ms = (await done.jsonValue()) - t0;
+  const error = await form.locator('.form-error').innerText();
+  if (error) throw new Error(`${id}: ${error}`);
+  return ms;
+}
+
+const { chromium } = await loadPlaywright();
+const server = await startServer(resolve(binary), resolve(webRoot));
+const browser = await launchChromium(chromium);
+const page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
+await page.goto(server.base + '/');
+await page.locator('#server-state[data-ok="true"]').waitFor();
+console.log(`load average (1, 5, 15 min) before: ${load()}`);
+for (const [name, id] of PANELS) {
+  await page.getByRole('tab', { name }).click();
+  const times = [];
+  for (let i = 0; i < Number(reps); i++) times.push(await clickToComplete(page, id));
+  console.log(`${name}: median ${median(times).toFixed(0)} ms click to complete ` +
+    `(runs: ${times.map((t) => t.toFixed(0)).join(', ')} ms), load average now ${load()}`);
+}
+await stopAll();
+process.exit(0);
