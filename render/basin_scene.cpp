@@ -115,7 +115,6 @@ BasinLayout layout_basins(const BasinResult& map, int width, int height) {
   if (map.rows.empty() || map.methods.empty()) throw std::invalid_argument("the basin map has no rows to draw");
   BasinLayout l;
   l.panels = static_cast<int>(map.methods.size());
-  l.gap = kGap;
   const int small = line_height(TextSize::small), large = line_height(TextSize::large);
   l.legend = legend_entries(map);
   int label = 0;
@@ -125,6 +124,8 @@ BasinLayout layout_basins(const BasinResult& map, int width, int height) {
   // Horizontal: [b title][b ticks][panels with gaps][margin]; vertical: [title][subtitle][panels][a ticks][a
   // title][shade note][legend].
   const int tick_width = text_width("-0.00", TextSize::small);
+  // Neighbouring panels' end ticks (r of one, -r of the next) are centred on their edges: the gap holds both.
+  l.gap = std::max(kGap, tick_width + 8);
   l.left = kMargin + text_width("b", TextSize::small) + 8 + tick_width + kTick + 3;
   l.top = kMargin + large + 6 + small + 8;
   const int below = kTick + 4 + small + 6 + small + 10 + small + 10;

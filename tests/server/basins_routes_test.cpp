@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "../render/png_decode.hpp"
+#include "core/basins.hpp"
 #include "render/basin_scene.hpp"
 #include "render/colormap.hpp"
 #include "server/json_codec.hpp"
@@ -166,6 +167,16 @@ TEST_F(BasinRoutes, PngHasOnePanelPerMethodInRootAndFailureColours) {
     for (int y = 0; y < image.height && !found; ++y)
       for (int x = 0; x < image.width && !found; ++x) found = image.at(x, y) == root0;  // lightest shade in legend
     EXPECT_TRUE(found);
+  }
+  // Between two panels the end ticks (r of the first, -r of the second) leave a clear column: the pixel
+  // column midway through the gap is the background from the panels' bottom down through the tick labels.
+  const BasinResult result = basins(basin_request_from_json(json::parse(body), Limits{}));
+  const render::BasinLayout layout = render::layout_basins(result, 0, 0);
+  ASSERT_EQ(image.width, layout.width);
+  const int middle = layout.left + layout.panel_size + layout.gap / 2;
+  const render::Color background = image.at(0, 0);
+  for (int y = layout.top; y < layout.top + layout.panel_size + 30; ++y) {
+    EXPECT_EQ(image.at(middle, y), background) << "tick labels meet in the gap at y = " << y;
   }
   // The GET form for <img src>.
   auto get = c.Get("/api/v1/render/basins?n=3&h=32&size=8&methods=newton-group,newton-algebra&width=400");

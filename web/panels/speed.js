@@ -38,7 +38,7 @@ export function createSpeedPanel(root) {
     select('problem', 'Problem', PROBLEMS, 'rigid-body'),
     number('n', 'Dimension N', 3),
     number('t_end', 'End time t_end', 1),
-    range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2^k for each whole k'),
+    range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2\u1d4f for each whole k'),
     number('energy_h', 'Step size h of the energy plot', 0.0625, 'Rigid body only'),
     number('tol', 'Tolerance', 1e-13),
     number('max_iterations', 'Max iterations', 100),

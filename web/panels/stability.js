@@ -18,7 +18,7 @@ export function createStabilityPanel(root, { openSolve }) {
     checkboxes('methods', 'Methods', METHODS, METHOD_ORDER, ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
     range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
-    range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2^k; the paper: \u221210 to 10'),
+    range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2\u1d4f; the paper: \u221210 to 10'),
     number('tol', 'Tolerance', 1e-13),
     number('max_iterations', 'Max iterations', 100),
     number('seed', 'Seed', 1),
@@ -167,6 +167,6 @@ function drawFigureTables(box, request, cells) {
   const link = el('a', { href: URL.createObjectURL(new Blob([csv + '\n'], { type: 'text/csv' })),
     download: 'stability-map.csv' }, 'Download these cells as CSV');
   box.replaceChildren(el('h3', {}, 'As tables (the paper\u2019s Figures 5.1 and 5.2)'),
-    el('p', { class: 'hint' }, 'Rows N, columns k with h = 2^k; each cell: iterations \u00b7 rate r, or why it failed.'),
+    el('p', { class: 'hint' }, 'Rows N, columns k with h = 2\u1d4f; each cell: iterations \u00b7 rate r, or why it failed. Wide tables scroll sideways; the N column stays.'),
     link, el('div', { class: 'maps' }, tables));
 }

@@ -61,6 +61,12 @@ export function fmtSeconds(s) {
 // h values of the grids are powers of two: show both forms.
 export function fmtH(h) {
   const k = Math.log2(h);
-  const exact = Number.isInteger(k) ? ` (2^${k})` : '';
+  const exact = Number.isInteger(k) ? ` (2${superscript(k)})` : '';
   return `${Number(h.toPrecision(6))}${exact}`;
+}
+
+// 2^-3 as 2⁻³: whole numbers in superscript digits.
+const SUPERSCRIPTS = '\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079';
+export function superscript(k) {
+  return String(k).replace('-', '\u207b').replace(/\d/g, (d) => SUPERSCRIPTS[Number(d)]);
 }
