@@ -78,7 +78,7 @@ function styledLine(label, i) {
 
 // Residual ||f(y_n)|| against n on a log axis, one series per run; xs are iteration numbers.
 export function residualChart(container, labels) {
-  const series = [{ label: 'n' }].concat(labels.map((text, i) => styledLine(text, i)));
+  const series = [{ label: 'n', class: 'x-series' }].concat(labels.map((text, i) => styledLine(text, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
@@ -221,7 +221,7 @@ export function workPrecisionChart(container, runs, hover) {
 // sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same step times.
 export function energyChart(container, times, runs) {
   // The work-precision chart's styles (same choice, same colour and dash): coinciding runs stay visible.
-  const series = [{ label: 't' }].concat(runs.map((r, i) => styledLine(r.label, i)));
+  const series = [{ label: 't', class: 'x-series' }].concat(runs.map((r, i) => styledLine(r.label, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
