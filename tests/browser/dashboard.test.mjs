@@ -242,6 +242,19 @@ test('compare draws one residual curve per ticked method', async () => {
   const ttol = await panel.locator('#compare-table td[data-col="time-to-tol"]').allInnerTexts();
   assert.equal(ttol.length, ticked);
   for (const t of ttol) assert.match(t, /^(\d+(\.\d+)? (\u00b5s|ms|s)|not reached)$/);
+  // N = 3: every run's iterates as frames; pick the last run, step to an iterate, see the API's picture and residual.
+  assert.equal(await panel.locator('#compare-frames-run option').count(), ticked);
+  await panel.locator('#compare-frames-run').selectOption({ index: ticked - 1 });
+  const [method, differential] = (await panel.locator('input[name="runs"]:checked').last().getAttribute('value')).split('|');
+  const run = { problem: 'paper-linear', n: 3, h: 0.5, tol: 1e-13, max_iterations: 100, seed: 1, method, differential,
+    include_iterates: false };
+  const trace = (await ndjson('/api/v1/solve', run)).filter((l) => l.type === 'iteration');
+  assert.equal(await page.locator('#compare-frames-slider').getAttribute('max'), String(trace.length - 1));
+  await page.locator('#compare-frames-slider').fill('2');
+  await page.locator('#compare-frames[data-step="2"]').waitFor();
+  assert.equal(await text('#compare-frames-readout'), `n = 2: \u2016f(y\u2082)\u2016 = ${trace[2].residual.toExponential(3)}`);
+  await page.waitForFunction(() => document.querySelector('#compare-frames-img').complete);
+  await sameImage('#compare-frames-img', '/api/v1/render/frames', { ...run, width: 512, height: 512, upto: 2 });
   await shot('compare');
 });
 
@@ -379,7 +392,7 @@ test('the work-precision chart has one series per ticked choice', async () => {
   assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));
   // The rigid body's trajectory as rotation frames: a slider over the time steps of the chosen run.
   const energyRequest = { problem: 'rigid-body', n: 3, t_end: 1, tol: 1e-13, max_iterations: 100, seed: 1, h: 0.125 };
-  await panel.locator('#trajectory-choice').selectOption({ index: 1 });
+  await panel.locator('#trajectory-frames-run').selectOption({ index: 1 });
   const choice = wp.series[1].choice;
   const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice })).body;
   assert.equal(await page.locator('#trajectory-frames-slider').getAttribute('max'), String(run.steps.length));

@@ -5,8 +5,9 @@ import { residualChart, residualTimeChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix } from '../shared/fields.js';
 import { checkedValues, runner } from '../shared/form.js';
+import { runFrames } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
-import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, label, mathText } from '../shared/labels.js';
+import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, iterateText, label, mathText } from '../shared/labels.js';
 import { limitFields, problemFields, readCommon } from '../shared/request.js';
 import { statusBadge } from '../shared/summary.js';
 
@@ -29,13 +30,16 @@ export function createComparePanel(root) {
   const chartBox = el('div', { class: 'chart', id: 'compare-chart' });
   const timeBox = el('div', { class: 'chart', id: 'compare-time-chart' });
   const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
+  const frames = runFrames('compare-frames', 'Rotation frames of the iterates (N = 3)', 'Iterate n',
+    'Iterates y\u2080 \u2026 y\u2099 of the chosen run as rotated frames (server-rendered PNG): y\u2099 bold, '
+    + 'earlier ones fainter, z dashed.');
   root.append(form, el('div', { class: 'output' }, live,
     el('div', { class: 'chart-pair' },
       el('figure', {}, el('figcaption', {}, 'Residual against solver CPU time (speed vs accuracy)'), timeBox),
       el('figure', {}, el('figcaption', {}, 'Residual against iteration n'), chartBox)),
     el('p', { class: 'hint' }, 'Times are the solver\u2019s own CPU time (cpu_seconds of each trace record), not the '
       + 'HTTP round trip. \u201cTime to tol\u201d is the CPU time of the first iterate with \u2016f\u2016 \u2264 tol.'),
-    tableBox));
+    tableBox, frames.element));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -45,7 +49,9 @@ export function createComparePanel(root) {
     const columns = picks.map(() => []);
     const times = picks.map(() => [[], []]);
     const rows = [];
+    const requests = [];
     tableBox.replaceChildren();
+    frames.hide();
     await start(async (signal, progress) => {
       if (!picks.length) throw new ApiError('Tick at least one method.', { field: 'runs' });
       const chart = residualChart(chartBox, labels);
@@ -67,9 +73,15 @@ export function createComparePanel(root) {
         timeChart.set(times);
         progress.value = i + 1;
         rows.push([labels[i], result, timeToTol(times[i], tol)]);
+        requests.push(request);
         tableBox.replaceChildren(resultsTable(rows));
       }
       live.textContent = `Compared ${picks.length} runs.`;
+      // Every N = 3 run's iterates as frames: the server re-runs the chosen solve to draw iterates 0..n.
+      if (requests[0].n === 3) {
+        frames.show(requests.map((request, i) => ({ label: labels[i], request, count: columns[i].length,
+          describe: (n) => iterateText(n, columns[i][n]) })));
+      }
     });
   });
 }

@@ -6,7 +6,7 @@ import { el } from '../shared/dom.js';
 import { actions, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { frameStepper } from '../shared/frame_stepper.js';
-import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds } from '../shared/labels.js';
+import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
 import { resultList } from '../shared/summary.js';
 
@@ -61,7 +61,7 @@ export function createSolvePanel(root) {
       table.hidden = false;
       // Every N = 3 solve, whatever its method or status: the server re-runs it to draw iterates 0..n.
       if (request.n === 3) {
-        frames.show(request, records.length, (n) => `n = ${n}: \u2016f(y${subscript(n)})\u2016 = ${fmtExp(records[n].residual)}`);
+        frames.show(request, records.length, (n) => iterateText(n, records[n].residual));
       }
     });
   }
@@ -75,10 +75,6 @@ export function createSolvePanel(root) {
       run();
     },
   };
-}
-
-function subscript(n) {
-  return String(n).replace(/\d/g, (d) => String.fromCharCode(0x2080 + Number(d)));
 }
 
 // JSON text as a value; text that is not JSON goes to the server as it is, which names the field.

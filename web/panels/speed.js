@@ -4,8 +4,8 @@ import { ApiError, postJSON } from '../shared/api.js';
 import { energyChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix, number, range, select } from '../shared/fields.js';
-import { checkedValues, fillSelect, runner, value, wholeRange } from '../shared/form.js';
-import { frameStepper } from '../shared/frame_stepper.js';
+import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
+import { runFrames } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { statusBadge } from '../shared/summary.js';
@@ -53,7 +53,9 @@ export function createSpeedPanel(root) {
   const energyFig = el('section', { class: 'energy', hidden: true },
     el('h3', {}, 'Rigid body: energy error over time'), energyBox);
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
-  const trajectory = trajectoryFrames();
+  const trajectory = runFrames('trajectory-frames', 'Rigid body: the trajectory as rotation frames', 'Time step',
+    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): y(t\u2096) bold, '
+    + 'earlier ones fainter, y(0) dashed.');
   root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
     el('p', { class: 'hint' }, 'One line per choice through its step sizes h (largest h at the left end); '
       + 'x is the solver\u2019s own CPU time (cpu_seconds), y the global error at t_end. p is the fitted order '
@@ -95,8 +97,8 @@ export function createSpeedPanel(root) {
       drawEnergy(energyBox, runs);
       energyFig.hidden = false;
       tableBox.replaceChildren(integrateTable(runs));
-      trajectory.show(runs.map(({ choice, result }) => ({ choice, result,
-        request: { ...common, ...choice, h: value(form, 'energy_h'), kind: 'integrate' } })));
+      trajectory.show(runs.map(({ choice, result }) => trajectoryRun(choiceLabel(choice), result,
+        { ...common, ...choice, h: value(form, 'energy_h'), kind: 'integrate' })));
       live.textContent = `Done: work precision in ${fmtSeconds(wp.seconds)}, ${runs.length} energy runs.`;
     });
   });
@@ -114,40 +116,15 @@ function frameSteps(request, done) {
   return { frames, steps };
 }
 
-// Rigid body: one choice's trajectory as rotation frames, a slider over its time steps, a select for the choice.
-function trajectoryFrames() {
-  const stepper = frameStepper('trajectory-frames', 'Time step',
-    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): y(t\u2096) bold, '
-    + 'earlier ones fainter, y(0) dashed.');
-  const picker = el('select', { id: 'trajectory-choice' });
-  const section = el('section', { class: 'trajectory', hidden: true },
-    el('h3', {}, 'Rigid body: the trajectory as rotation frames'),
-    el('div', { class: 'field' }, el('label', { for: picker.id }, 'Run'), picker), stepper.element);
-  let runs = [];
-  function draw() {
-    const { request, result } = runs[Number(picker.value)];
-    const { frames, steps } = frameSteps(request, result.steps.length);
-    stepper.show({ ...request, frames }, steps.length, (i) => {
-      const k = steps[i];
-      const energy = k ? result.steps[k - 1].energy : result.initial_energy;
-      return `step ${k}, t = ${Number((k * request.h).toPrecision(6))}: `
-        + `E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
-    });
-  }
-  picker.addEventListener('change', draw);
-  return {
-    element: section,
-    show(list) {
-      runs = list;
-      fillSelect(picker, runs.map(({ choice }, i) => [String(i), choiceLabel(choice)]), '0');
-      section.hidden = false;
-      draw();
-    },
-    hide() {
-      section.hidden = true;
-      stepper.hide();
-    },
-  };
+// One run for the trajectory's stepper: the render request (one frame per step up to 1000) and per slider
+// position its step, time and energy error.
+function trajectoryRun(label, result, request) {
+  const { frames, steps } = frameSteps(request, result.steps.length);
+  return { label, request: { ...request, frames }, count: steps.length, describe(i) {
+    const k = steps[i];
+    const energy = k ? result.steps[k - 1].energy : result.initial_energy;
+    return `step ${k}, t = ${Number((k * request.h).toPrecision(6))}: E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
+  } };
 }
 
 // Energy relative to E(0), so that drift is visible whatever E's size; runs that stopped

@@ -3,6 +3,7 @@
 // request, so the page holds no matrices: only the request and one line of numbers per step, no more than
 // the picture needs. Images are GETs, so a step already seen comes from the browser cache (ETag, 304).
 import { el } from './dom.js';
+import { fillSelect } from './form.js';
 
 const SIZE = 512;
 
@@ -61,6 +62,35 @@ export function frameStepper(id, sliderLabel, caption) {
       figure.hidden = true;
       run = null;
       img.removeAttribute('src');
+    },
+  };
+}
+
+// Several runs, one shown at a time: a select of the runs above one stepper. show() takes
+// [{ label, request, count, describe(k) }]; the picker is `${id}-run`.
+export function runFrames(id, heading, sliderLabel, caption) {
+  const stepper = frameStepper(id, sliderLabel, caption);
+  const picker = el('select', { id: `${id}-run` });
+  const section = el('section', { class: 'run-frames', hidden: true },
+    el('h3', {}, heading),
+    el('div', { class: 'field' }, el('label', { for: picker.id }, 'Run'), picker), stepper.element);
+  let runs = [];
+  const draw = () => {
+    const run = runs[Number(picker.value)];
+    stepper.show(run.request, run.count, run.describe);
+  };
+  picker.addEventListener('change', draw);
+  return {
+    element: section,
+    show(list) {
+      runs = list;
+      fillSelect(picker, runs.map((run, i) => [String(i), run.label]), '0');
+      section.hidden = false;
+      draw();
+    },
+    hide() {
+      section.hidden = true;
+      stepper.hide();
     },
   };
 }

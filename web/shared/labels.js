@@ -36,8 +36,17 @@ export function mathText(text) {
     .replace(/\^2/g, '\u00b2')
     .replace(/\^T/g, '\u1d40')
     .replace(/\b1\/2 /g, '\u00bd ')
-    .replace(/\b([yv])_(\d+)/g, (_, v, d) => v + [...d].map((c) => SUBSCRIPTS[Number(c)]).join(''))
+    .replace(/\b([yv])_(\d+)/g, (_, v, d) => v + subscript(d))
     .replace(/f~/g, 'f\u0303');
+}
+
+export function subscript(n) {
+  return String(n).replace(/\d/g, (d) => SUBSCRIPTS[Number(d)]);
+}
+
+// A frame slider's words for iterate n of a solve.
+export function iterateText(n, residual) {
+  return `n = ${n}: \u2016f(y${subscript(n)})\u2016 = ${fmtExp(residual)}`;
 }
 
 // Exponential with 3 decimals: readable and still parseable by Number().
