@@ -6,9 +6,11 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <numeric>
 #include <set>
 
 #include "core/basins.hpp"
+#include "core/byte_buffer.hpp"
 #include "core/cancellation.hpp"
 #include "core/parallel_for.hpp"
 #include "core/solvers/run_method.hpp"
@@ -41,8 +43,8 @@ class BasinMap {
   using Element = typename G::Element;
   using Vector = typename G::Vector;
 
-  BasinMap(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row)
-      : group_(eq.group()), eq_(eq), plane_(untimed(plane)), on_row_(on_row), size_(plane.size),
+  BasinMap(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row, const WorkFarm* farm)
+      : group_(eq.group()), eq_(eq), plane_(untimed(plane)), on_row_(on_row), farm_(farm), size_(plane.size),
         methods_(static_cast<int>(plane.methods.size())), b1_(plane.b1), b2_(plane.b2) {
     result_.grid = {basin_axis(size_, plane.radius), plane.radius, plane.b1, plane.b2, Eigen::MatrixXd(eq.z())};
   }
@@ -52,14 +54,28 @@ class BasinMap {
     slots_.resize(static_cast<std::size_t>(size_) * per_row);
     remaining_ = std::vector<std::atomic<int>>(static_cast<std::size_t>(size_));
     for (auto& r : remaining_) r = per_row;
-    // Items in pixel order (row, column, method): rows complete roughly in order, so few wait to be classified.
-    parallel_for(static_cast<int>(slots_.size()), plane_.threads, [&](int k) { return solve_pixel(k, per_row); });
+    if (farm_) {
+      // A farm's items are whole rows (a pixel is too small to send to another process).
+      std::vector<int> rows(static_cast<std::size_t>(size_));
+      std::iota(rows.begin(), rows.end(), 0);
+      if (!farm_->run(rows, [&](int row) { return solve_row(row, per_row); },
+                      [&](int row, const std::string& bytes) { return file_row(row, per_row, bytes); }))
+        return {};  // a process that only computed rows for the farm
+    } else {
+      // Items in pixel order (row, column, method): rows complete roughly in order, so few wait to be classified.
+      parallel_for(static_cast<int>(slots_.size()), plane_.threads, [&](int k) {
+        if (!solve_pixel(k, per_row)) return false;
+        if (remaining_[static_cast<std::size_t>(k / per_row)].fetch_sub(1) == 1) classify_completed_rows();
+        return !stop_.load();
+      });
+    }
     result_.complete = static_cast<int>(result_.rows.size()) == size_;
     summarise();
     return std::move(result_);
   }
 
  private:
+  // Solves pixel item k into its slot; false when the map was stopped or cancelled.
   bool solve_pixel(int k, int per_row) {
     if (stop_.load() || cancellation_requested()) return !(stop_ = true);
     const int row = k / per_row, column = (k % per_row) / methods_, m = k % methods_;
@@ -77,7 +93,39 @@ class BasinMap {
     slot.status = r.status;
     slot.iterations = r.iterations;
     if (r.status == Status::converged) slot.y = Element(r.y);
-    if (remaining_[static_cast<std::size_t>(row)].fetch_sub(1) == 1) classify_completed_rows();
+    return true;
+  }
+
+  // A farm item: every pixel of a row as bytes (status, iterations and, when converged, y bit for bit); empty
+  // when stopped.
+  std::string solve_row(int row, int per_row) {
+    ByteWriter out;
+    for (int k = row * per_row; k < (row + 1) * per_row; ++k) {
+      if (!solve_pixel(k, per_row)) return {};
+      const Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
+      out.put(slot.status).put(slot.iterations);
+      if (slot.status != Status::converged) continue;
+      out.put(slot.y.rows()).put(slot.y.cols()).put_doubles(slot.y.data(), static_cast<std::size_t>(slot.y.size()));
+    }
+    return out.take();
+  }
+
+  // Files a farm item's row into its slots (the ones solve_row wrote if this process computed it) and classifies
+  // the rows now complete, in order.
+  bool file_row(int row, int per_row, const std::string& bytes) {
+    if (bytes.empty()) return !(stop_ = true);
+    ByteReader in(bytes);
+    for (int k = row * per_row; k < (row + 1) * per_row; ++k) {
+      Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
+      slot.status = in.get<Status>();
+      slot.iterations = in.get<int>();
+      if (slot.status != Status::converged) continue;
+      const auto rows = in.get<Eigen::Index>(), cols = in.get<Eigen::Index>();
+      slot.y.resize(rows, cols);
+      in.get_doubles(slot.y.data(), static_cast<std::size_t>(slot.y.size()));
+    }
+    remaining_[static_cast<std::size_t>(row)] = 0;
+    classify_completed_rows();
     return !stop_.load();
   }
 
@@ -167,6 +215,7 @@ class BasinMap {
   const Equation<G>& eq_;
   const BasinPlane plane_;
   const BasinRowCallback& on_row_;
+  const WorkFarm* farm_;
   int size_, methods_;
   Vector b1_, b2_;
   BasinResult result_;
@@ -181,8 +230,9 @@ class BasinMap {
 
 // The map of eq over the plane (basins() without a request: no validation here).
 template <LieGroup G>
-BasinResult basin_map(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row = {}) {
-  return BasinMap<G>(eq, plane, on_row).run();
+BasinResult basin_map(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row = {},
+                      const WorkFarm* farm = nullptr) {
+  return BasinMap<G>(eq, plane, on_row, farm).run();
 }
 
 }  // namespace lienewton

@@ -81,7 +81,7 @@ void validate(const BasinRequest& req) {
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
 }
 
-BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row) {
+BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   validate(req);
   const auto start = std::chrono::steady_clock::now();
   const BasinGrid grid = basin_grid(req);
@@ -90,7 +90,7 @@ BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row) {
     using G = std::decay_t<decltype(group)>;
     const auto field = field_of(group, req);
     const auto eq = Equation<G>::implicit_euler(group, typename G::Element(z_of(req)), req.solve.h, *field);
-    return basin_map(eq, plane, on_row);
+    return basin_map(eq, plane, on_row, farm);
   });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

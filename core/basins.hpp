@@ -17,6 +17,7 @@
 
 #include "solve.hpp"
 #include "status.hpp"
+#include "work_farm.hpp"
 
 namespace lienewton {
 
@@ -94,8 +95,9 @@ void validate(const BasinRequest& request);
 using BasinRowCallback = std::function<bool(const BasinRow& row, const std::vector<BasinRoot>& roots)>;
 
 // Computes the map in parallel. Every solve polls the current cancellation token; a cancelled map returns the
-// rows finished so far (complete = false).
-BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row = {});
+// rows finished so far (complete = false). farm (optional): the rows are computed by its processes instead of
+// request.threads threads here; a process that only computed rows for it gets an empty result.
+BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row = {}, const WorkFarm* farm = nullptr);
 
 // The map's pixel-centre coordinates -r + r (2 i + 1) / size, i = 0..size-1.
 std::vector<double> basin_axis(int size, double radius);

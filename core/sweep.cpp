@@ -7,6 +7,7 @@
 #include <atomic>
 #include <mutex>
 
+#include "byte_buffer.hpp"
 #include "parallel_for.hpp"
 #include "validation.hpp"
 
@@ -47,6 +48,30 @@ ProblemSpec at_dimension(const ProblemSpec& problem, int n) {
   return cell;
 }
 
+// A cell as bytes for a WorkFarm, every double bit for bit.
+std::string to_bytes(const SweepCell& c) {
+  ByteWriter out;
+  out.put(c.method).put(c.n).put(c.h).put(c.status).put_string(c.reason).put(c.iterations).put(c.rate.has_value());
+  out.put(c.rate.value_or(0.0)).put(c.residual).put(c.seconds);
+  return out.take();
+}
+SweepCell cell_from_bytes(const std::string& bytes) {
+  ByteReader in(bytes);
+  SweepCell c;
+  c.method = in.get<Method>();
+  c.n = in.get<int>();
+  c.h = in.get<double>();
+  c.status = in.get<Status>();
+  c.reason = in.get_string();
+  c.iterations = in.get<int>();
+  const bool has_rate = in.get<bool>();
+  const double rate = in.get<double>();
+  if (has_rate) c.rate = rate;
+  c.residual = in.get<double>();
+  c.seconds = in.get<double>();
+  return c;
+}
+
 }  // namespace
 
 SweepRequest with_defaults(SweepRequest req) {
@@ -78,7 +103,7 @@ std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard) {
 }
 
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
-                  const std::function<bool()>& should_continue) {
+                  const std::function<bool()>& should_continue, const WorkFarm* farm) {
   const SweepRequest req = with_defaults(request);
   validate(req);
   const auto start = std::chrono::steady_clock::now();
@@ -99,24 +124,43 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     if (!cancelled && should_continue && !should_continue()) cancelled = true;
     return !cancelled.load();
   };
-  // The cells to compute, in claim order: all of them, or this shard's.
-  const std::vector<int> order = req.shard ? shard_cells(req, *req.shard) : largest_n_first(req);
-  parallel_for(static_cast<int>(order.size()), req.threads, [&](int k) {
-    const std::size_t i = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
+  // Cell i of the grid (method-major, then n, then h); nullopt when the sweep was cancelled during it.
+  const auto solve_cell = [&](std::size_t i) -> std::optional<SweepCell> {
     const std::size_t m = i / per_method, ni = (i % per_method) / req.h.size(), hi = i % req.h.size();
     SolveRequest s{problems[ni], req.solver, req.h[hi]};
     s.solver.method = req.methods[m];
     s.solver.include_iterates = false;
     const SolveResult r = solve(s, poll);
-    if (r.status == Status::cancelled) return false;
-    SweepCell& cell = result.cells[i];
-    cell = {s.solver.method, s.problem.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
+    if (r.status == Status::cancelled) return std::nullopt;
+    return SweepCell{s.solver.method, s.problem.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
+  };
+  // Files a finished cell in its grid slot (any order, any thread or process) and reports it.
+  const auto file_cell = [&](std::size_t i, SweepCell&& cell) {
+    result.cells[i] = std::move(cell);
     done[i] = 1;
     if (!on_cell) return true;
     std::lock_guard lock(callback_mutex);
-    if (!on_cell(cell)) cancelled = true;
+    if (!on_cell(result.cells[i])) cancelled = true;
     return !cancelled.load();
-  });
+  };
+  // The cells to compute, in claim order: all of them, or this shard's.
+  const std::vector<int> order = req.shard ? shard_cells(req, *req.shard) : largest_n_first(req);
+  if (farm) {
+    const auto compute = [&](int i) {
+      const std::optional<SweepCell> cell = solve_cell(static_cast<std::size_t>(i));
+      return cell ? to_bytes(*cell) : std::string();
+    };
+    const auto deliver = [&](int i, const std::string& bytes) {
+      return !bytes.empty() && file_cell(static_cast<std::size_t>(i), cell_from_bytes(bytes));
+    };
+    if (!farm->run(order, compute, deliver)) return {};  // a process that only computed cells for the farm
+  } else {
+    parallel_for(static_cast<int>(order.size()), req.threads, [&](int k) {
+      const std::size_t i = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
+      std::optional<SweepCell> cell = solve_cell(i);
+      return cell && file_cell(i, std::move(*cell));
+    });
+  }
   // A cancelled sweep returns the cells that finished, still in grid order.
   std::vector<SweepCell> finished;
   for (std::size_t i = 0; i < result.cells.size(); ++i)

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solve.hpp"
+#include "work_farm.hpp"
 
 namespace lienewton {
 
@@ -60,8 +61,10 @@ void validate(const SweepRequest& request);
 using CellCallback = std::function<bool(const SweepCell&)>;
 // should_continue (optional, thread-safe) is polled at every iteration of every cell: returning false
 // cancels the sweep within one iteration (a client that left, a deadline). Cancelled cells are omitted.
+// farm (optional): the cells are computed by its processes instead of request.threads threads here (on_cell is
+// then called in the process that assembles the result); a process that only computed cells gets an empty result.
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {},
-                  const std::function<bool()>& should_continue = {});
+                  const std::function<bool()>& should_continue = {}, const WorkFarm* farm = nullptr);
 
 // Joins the results of every shard of one sweep into the unsharded result: the same cells in grid order, seconds
 // summed over the parts. Throws RequestError (field "shard") when a part is missing, repeated, unsharded, stopped

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Quick start, step 2: installs what the tests need too (Chromium, clang, npm packages from the lockfile),
 # builds and runs the whole suite through ctest.
-#   scripts/test.sh              Release build in build/
+#   scripts/test.sh              Release build in build/ (with -DLIENEWTON_MPI=ON)
 #   scripts/test.sh --sanitize   the same tests in an ASan + UBSan (incl. float-cast-overflow) build in build-asan/
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -13,7 +13,8 @@ if [ "${1:-}" = --sanitize ]; then
     -DLIENEWTON_SANITIZE=ON -DLIENEWTON_BENCH=OFF
 else
   dir=build
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release
+  # The CLI with MPI (ctest mpi_check runs it under mpirun); the sanitizer build stays without.
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_MPI=ON
 fi
 cmake --build "$dir" -j"$(nproc)"
 ctest --test-dir "$dir" --output-on-failure -j"$(nproc)"

@@ -3,8 +3,10 @@
 
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@
 #include "server/json_codec.hpp"
 #include "server/cli/paper_figures.hpp"
 #include "server/render_requests.hpp"
+#ifdef LIENEWTON_MPI
+#include "server/cli/mpi_farm.hpp"
+#endif
 
 namespace {
 
@@ -43,13 +48,23 @@ constexpr const char* kUsage =
     "  --help           this text\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
+    "Built with -DLIENEWTON_MPI=ON, `mpirun -n P lienewton sweep|basins|figures` (or srun) spreads the cells or\n"
+    "rows over P processes, one item at a time as they finish; rank 0 reads stdin and prints the same output.\n"
     "Exit status: 0 with the result (also when the solve did not converge: see its status), 2 for an invalid\n"
     "request or usage -- then a JSON error {\"error\":{\"code\",\"field\",\"message\"}} naming the field is\n"
     "printed on stderr (never stdout, which may carry a PNG) -- and 1 when the work could not be done\n"
     "(renderer unavailable, internal error).\n";
 
-int fail(int status, std::string_view code, std::string_view field, std::string_view message) {
-  std::cerr << dump(error_body(code, field, message)) << "\n";
+// How this process takes part in a command: alone, or as one rank of an MPI job whose rank 0 reads the request,
+// hands out the cells or rows (farm) and prints; the other ranks compute and print nothing.
+struct Part {
+  const WorkFarm* farm = nullptr;
+  bool prints = true;
+  std::function<std::string(std::string)> share_input = [](std::string text) { return text; };
+};
+
+int fail(int status, std::string_view code, std::string_view field, std::string_view message, bool prints = true) {
+  if (prints) std::cerr << dump(error_body(code, field, message)) << "\n";
   return status;
 }
 
@@ -58,19 +73,20 @@ void write_png(const std::vector<unsigned char>& png) {
   std::fflush(stdout);
 }
 
-int run(const std::string& command, const std::string& sub) {
-  const std::string text((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
-  const json body = parse_body(text);
+int run(const std::string& command, const std::string& sub, const Part& part) {
+  std::string text;
+  if (part.prints) text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  const json body = parse_body(part.share_input(std::move(text)));
   const Limits limits = Limits::unlimited();
   json out;
   if (command == "solve") {
     const SolveRequest r = solve_request_from_json(body, limits);
     out = to_json(solve(r), r.solver.include_iterates);
   } else if (command == "sweep") {
-    out = to_json(sweep(sweep_request_from_json(body, limits)));
+    out = to_json(sweep(sweep_request_from_json(body, limits), {}, {}, part.farm));
   } else if (command == "basins") {
     const BasinRequest r = basin_request_from_json(body, limits);
-    out = to_json(basins(r), r.methods);
+    out = to_json(basins(r, {}, part.farm), r.methods);
   } else if (command == "integrate") {
     out = to_json(integrate(integrate_request_from_json(body, limits)));
   } else if (command == "work-precision") {
@@ -81,7 +97,7 @@ int run(const std::string& command, const std::string& sub) {
     write_png(draw(body, limits, renderer, {}));
     return 0;
   }
-  std::cout << dump(out) << "\n";
+  if (part.prints) std::cout << dump(out) << "\n";
   return 0;
 }
 
@@ -99,15 +115,17 @@ int merge(const std::vector<std::string>& files) {
 }
 
 // Both problems of section 5 on the paper's default grid, as tables.
-int figures(const std::string& differential_name) {
+int figures(const std::string& differential_name, const Part& part) {
   const auto differential = differential_from_string(differential_name.empty() ? "finite-difference" : differential_name);
-  if (!differential) return fail(2, "invalid_field", "differential", "unknown differential " + differential_name);
+  if (!differential)
+    return fail(2, "invalid_field", "differential", "unknown differential " + differential_name, part.prints);
   for (ProblemKind problem : {ProblemKind::paper_linear, ProblemKind::paper_sine}) {
     SweepRequest req;
     req.problem.kind = problem;
     req.solver.differential = *differential;
-    const SweepResult result = sweep(req);
-    std::cout << "## " << to_string(problem) << " (" << result.cells.size() << " cells in " << result.seconds
+    const SweepResult result = sweep(req, {}, {}, part.farm);
+    if (part.prints)
+      std::cout << "## " << to_string(problem) << " (" << result.cells.size() << " cells in " << result.seconds
               << " s)\n\n"
               << figure_tables(result, problem, *differential);
   }
@@ -128,26 +146,40 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  if (command == "figures" && argc <= 3) return figures(sub);
+  Part part;
+#ifdef LIENEWTON_MPI
+  std::optional<cli::MpiSession> mpi;
+  std::optional<cli::MpiFarm> farm;
+  if (cli::MpiSession::launched_by_mpi()) {
+    mpi.emplace(argc, argv);
+    farm.emplace(*mpi);
+    part = {&*farm, mpi->rank() == 0, [&](std::string text) { return mpi->broadcast(std::move(text)); }};
+    // Commands without a map run on rank 0 alone.
+    if (command != "sweep" && command != "basins" && command != "figures" && !part.prints) return 0;
+  }
+#endif
+  if (command == "figures" && argc <= 3) return figures(sub, part);
   const bool plain = command == "solve" || command == "sweep" || command == "basins" || command == "integrate" ||
                      command == "work-precision";
   const bool render = command == "render" && (sub == "frames" || sub == "heatmap" || sub == "basins");
   const bool merging = command == "merge" && argc > 2;
   if ((!plain && !render && !merging) || (!merging && argc > (render ? 3 : 2))) {
-    std::cerr << kUsage;
-    return fail(2, "usage", "", "unknown command; see lienewton --help");
+    if (part.prints) std::cerr << kUsage;
+    return fail(2, "usage", "", "unknown command; see lienewton --help", part.prints);
   }
+  // Every rank of an MPI job meets the same request errors; rank 0 reports them.
+  const bool prints = part.prints;
   try {
-    return merging ? merge(std::vector<std::string>(argv + 2, argv + argc)) : run(command, sub);
+    return merging ? merge(std::vector<std::string>(argv + 2, argv + argc)) : run(command, sub, part);
   } catch (const RequestError& e) {
-    return fail(2, error_code(e), e.field(), e.what());
+    return fail(2, error_code(e), e.field(), e.what(), prints);
   } catch (const ApiError& e) {
-    return fail(e.status() < 500 ? 2 : 1, e.code(), e.field(), e.what());
+    return fail(e.status() < 500 ? 2 : 1, e.code(), e.field(), e.what(), prints);
   } catch (const render::RenderUnavailable& e) {
-    return fail(1, "render_unavailable", "", e.what());
+    return fail(1, "render_unavailable", "", e.what(), prints);
   } catch (const std::bad_alloc&) {
-    return fail(1, "out_of_memory", "", "the request needs more memory than the machine has");
+    return fail(1, "out_of_memory", "", "the request needs more memory than the machine has", prints);
   } catch (const std::exception& e) {
-    return fail(1, "internal_error", "", e.what());
+    return fail(1, "internal_error", "", e.what(), prints);
   }
 }

@@ -13,6 +13,7 @@
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
 #include "residual_oracle.hpp"
+#include "reversed_farm.hpp"
 
 namespace lienewton {
 namespace {
@@ -171,6 +172,33 @@ TEST(Basins, SameMapForOneAndTwoThreads) {
   }
   ASSERT_EQ(one.roots.size(), two.roots.size());
   for (std::size_t k = 0; k < one.roots.size(); ++k) EXPECT_EQ(one.roots[k].y, two.roots[k].y);  // bitwise
+}
+
+// The farm path (MPI ranks in the CLI): rows computed last-first and passed as bytes give the threads' map, roots
+// numbered in pixel order and their y bit for bit; a process that only computes for the farm returns no rows.
+TEST(Basins, FarmGivesTheSameMapAsThreads) {
+  const BasinRequest req = paper_linear_request(4.0, 20, 2);
+  const BasinResult threads = basins(req);
+  const ReversedFarm farm;
+  const BasinResult farmed = basins(req, {}, &farm);
+  ASSERT_TRUE(farmed.complete);
+  ASSERT_EQ(farmed.rows.size(), threads.rows.size());
+  for (std::size_t i = 0; i < threads.rows.size(); ++i) {
+    EXPECT_EQ(farmed.rows[i].row, static_cast<int>(i));
+    EXPECT_EQ(farmed.rows[i].new_roots, threads.rows[i].new_roots);
+    for (std::size_t m = 0; m < threads.rows[i].pixels.size(); ++m)
+      for (std::size_t c = 0; c < threads.rows[i].pixels[m].size(); ++c) {
+        const BasinPixel &a = threads.rows[i].pixels[m][c], &b = farmed.rows[i].pixels[m][c];
+        ASSERT_EQ(a.status, b.status);
+        ASSERT_EQ(a.root, b.root);
+        ASSERT_EQ(a.iterations, b.iterations);
+      }
+  }
+  ASSERT_GE(threads.roots.size(), 2u);
+  ASSERT_EQ(farmed.roots.size(), threads.roots.size());
+  for (std::size_t k = 0; k < threads.roots.size(); ++k) EXPECT_EQ(farmed.roots[k].y, threads.roots[k].y);
+  const ReversedFarm worker(true);
+  EXPECT_TRUE(basins(req, {}, &worker).rows.empty());
 }
 
 TEST(Basins, StopsWhenTheCallbackSaysSoOrTheTokenIsCancelled) {

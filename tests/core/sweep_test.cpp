@@ -7,6 +7,7 @@
 
 #include "core/request_error.hpp"
 #include "core/sweep.hpp"
+#include "reversed_farm.hpp"
 
 namespace lienewton {
 namespace {
@@ -151,6 +152,28 @@ TEST(Sweep, ShardsMergeToTheUnshardedSweep) {
   EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2]}), RequestError);           // one missing
   EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2], parts[2]}), RequestError); // one repeated
   EXPECT_THROW((void)merge_shards({whole}), RequestError);                                  // not sharded
+}
+
+// The farm path (MPI ranks in the CLI): cells computed in another order and passed as bytes give the threads'
+// result bit for bit; a process that only computes for the farm returns no cells.
+TEST(Sweep, FarmGivesTheSameCellsAsThreads) {
+  SweepRequest req;
+  req.problem.kind = ProblemKind::paper_sine;
+  req.solver.differential = Differential::exact;
+  req.n = {2, 3, 7};
+  req.h = {0.125, 2.0, 64.0};
+  const SweepResult threads = sweep(req);
+  const ReversedFarm farm;
+  const SweepResult farmed = sweep(req, {}, {}, &farm);
+  ASSERT_EQ(farmed.cells.size(), threads.cells.size());
+  for (std::size_t i = 0; i < threads.cells.size(); ++i) {
+    const SweepCell &a = threads.cells[i], &b = farmed.cells[i];
+    EXPECT_TRUE(a.method == b.method && a.n == b.n && a.h == b.h && a.status == b.status && a.reason == b.reason &&
+                a.iterations == b.iterations && a.rate == b.rate && a.residual == b.residual)
+        << "cell " << i;
+  }
+  const ReversedFarm worker(true);
+  EXPECT_TRUE(sweep(req, {}, {}, &worker).cells.empty());
 }
 
 TEST(Sweep, CancelStopsWithinOneIterationAndKeepsFinishedCellsInOrder) {
