@@ -18,3 +18,5 @@ SolveResult run_method(Method method, const Equation<G>& eq, const SolverOptions
 }
 
 }  // namespace lienewton
+
+#include "rotation_instances.hpp"  // after the templates: their SO(3) and SO(N) instances are compiled once
