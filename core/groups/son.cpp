@@ -55,28 +55,37 @@ class AdFunction {
       }
   }
 
-  // X (in Q's basis) -> F(ad) X, in place.
+  // X (in Q's basis) -> F(ad) X, in place. Scalar code on the entries (J only permutes them and flips signs):
+  // this runs q times per q x q matrix, and small Eigen blocks cost more than the arithmetic.
   void apply_in_q_basis(Mat& x) const {
-    const Eigen::Matrix2d j = (Eigen::Matrix2d() << 0, -1, 1, 0).finished();
-    auto left = [&](std::complex<double> v, const auto& block) {
-      return (v.real() * block + v.imag() * (j * block)).eval();
-    };
     for (std::size_t k = 0; k < nb_; ++k) {
       const auto& bk = s_.blocks[k];
       for (std::size_t l = 0; l < nb_; ++l) {
         const auto& bl = s_.blocks[l];
-        auto blk = x.block(bk.start, bl.start, bk.size, bl.size);
+        const int r = bk.start, c = bl.start;
         const std::complex<double> fm = minus_[k * nb_ + l];
         if (bk.size == 2 && bl.size == 2) {
-          const Eigen::Matrix2d m = blk;
-          const Eigen::Matrix2d jmj = j * m * j;
-          blk = left(fm, 0.5 * (m - jmj)) + left(plus_[k * nb_ + l], 0.5 * (m + jmj));
-        } else if (bk.size == 2) {
-          blk = left(fm, Eigen::Vector2d(blk));
-        } else if (bl.size == 2) {
-          blk = left(fm, Eigen::Vector2d(blk.transpose())).transpose();
+          // m = a + b with a = (m - J m J)/2 commuting with J (sees F(i(theta_k - theta_l))) and b = (m + J m J)/2
+          // anticommuting (F(i(theta_k + theta_l))); J m J = [-m11 m10; m01 -m00].
+          const double m00 = x(r, c), m01 = x(r, c + 1), m10 = x(r + 1, c), m11 = x(r + 1, c + 1);
+          const double a00 = 0.5 * (m00 + m11), a01 = 0.5 * (m01 - m10), a10 = 0.5 * (m10 - m01), a11 = 0.5 * (m11 + m00);
+          const double b00 = 0.5 * (m00 - m11), b01 = 0.5 * (m01 + m10), b10 = 0.5 * (m10 + m01), b11 = 0.5 * (m11 - m00);
+          const std::complex<double> fp = plus_[k * nb_ + l];
+          // F X = re X + im J X per part, J [u00 u01; u10 u11] = [-u10 -u11; u00 u01].
+          x(r, c) = (fm.real() * a00 + fm.imag() * -a10) + (fp.real() * b00 + fp.imag() * -b10);
+          x(r, c + 1) = (fm.real() * a01 + fm.imag() * -a11) + (fp.real() * b01 + fp.imag() * -b11);
+          x(r + 1, c) = (fm.real() * a10 + fm.imag() * a00) + (fp.real() * b10 + fp.imag() * b00);
+          x(r + 1, c + 1) = (fm.real() * a11 + fm.imag() * a01) + (fp.real() * b11 + fp.imag() * b01);
+        } else if (bk.size == 2) {  // a column pair [u0; u1] -> re u + im J u
+          const double u0 = x(r, c), u1 = x(r + 1, c);
+          x(r, c) = fm.real() * u0 + fm.imag() * -u1;
+          x(r + 1, c) = fm.real() * u1 + fm.imag() * u0;
+        } else if (bl.size == 2) {  // a row pair, acted on as the transposed column
+          const double u0 = x(r, c), u1 = x(r, c + 1);
+          x(r, c) = fm.real() * u0 + fm.imag() * -u1;
+          x(r, c + 1) = fm.real() * u1 + fm.imag() * u0;
         } else {
-          blk *= fm.real();
+          x(r, c) *= fm.real();
         }
       }
     }
