@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/request_error.hpp"
@@ -104,34 +105,41 @@ INSTANTIATE_TEST_SUITE_P(Figures, PaperClaims, ::testing::Values(ProblemKind::pa
                            return info.param == ProblemKind::paper_linear ? "PaperLinear" : "PaperSine";
                          });
 
-TEST(Sweep, ResultDoesNotDependOnThreadCount) {
+// A small paper-sine grid, 3 N x 3 h, for the tests of how cells are scheduled.
+SweepRequest small_sine_grid(Differential d, std::vector<int> n) {
   SweepRequest req;
   req.problem.kind = ProblemKind::paper_sine;
-  req.solver.differential = Differential::finite_difference;
-  req.n = {2, 5, 9};
+  req.solver.differential = d;
+  req.n = std::move(n);
   req.h = {0.125, 2.0, 64.0};
+  return req;
+}
+
+// Every field of every cell, bit for bit.
+void expect_same_cells(const SweepResult& want, const SweepResult& got) {
+  ASSERT_EQ(got.cells.size(), want.cells.size());
+  for (std::size_t i = 0; i < want.cells.size(); ++i) {
+    const SweepCell &a = want.cells[i], &b = got.cells[i];
+    EXPECT_TRUE(a.method == b.method && a.n == b.n && a.h == b.h && a.status == b.status && a.reason == b.reason &&
+                a.iterations == b.iterations && a.rate == b.rate && a.residual == b.residual)
+        << "cell " << i;
+  }
+}
+
+TEST(Sweep, ResultDoesNotDependOnThreadCount) {
+  SweepRequest req = small_sine_grid(Differential::finite_difference, {2, 5, 9});
   req.threads = 1;
   const SweepResult one = sweep(req);
   req.threads = 3;
-  const SweepResult three = sweep(req);
-  ASSERT_EQ(one.cells.size(), three.cells.size());
-  for (std::size_t i = 0; i < one.cells.size(); ++i) {
-    EXPECT_EQ(one.cells[i].status, three.cells[i].status);
-    EXPECT_EQ(one.cells[i].iterations, three.cells[i].iterations);
-    EXPECT_EQ(one.cells[i].residual, three.cells[i].residual);  // bit for bit
-  }
+  expect_same_cells(one, sweep(req));
 }
 
 // Shards partition the grid: 4 parts of the 2 x 3 x 3 = 18 cells (5, 5, 4, 4: every 4th in claim order) hold every
 // cell once, and merge_shards gives the unsharded result cell for cell, bit for bit.
 // A missing, repeated or unsharded part is refused.
 TEST(Sweep, ShardsMergeToTheUnshardedSweep) {
-  SweepRequest req;
-  req.problem.kind = ProblemKind::paper_sine;
-  req.solver.differential = Differential::finite_difference;
+  SweepRequest req = small_sine_grid(Differential::finite_difference, {2, 5, 9});
   req.methods = {Method::newton_group, Method::newton_algebra};
-  req.n = {2, 5, 9};
-  req.h = {0.125, 2.0, 64.0};
   const SweepResult whole = sweep(req);
   std::vector<SweepResult> parts;
   for (int i = 0; i < 4; ++i) {
@@ -141,13 +149,7 @@ TEST(Sweep, ShardsMergeToTheUnshardedSweep) {
   }
   std::swap(parts[0], parts[3]);  // any order
   const SweepResult merged = merge_shards(parts);
-  ASSERT_EQ(merged.cells.size(), whole.cells.size());
-  for (std::size_t i = 0; i < whole.cells.size(); ++i) {
-    const SweepCell &a = whole.cells[i], &b = merged.cells[i];
-    EXPECT_TRUE(a.method == b.method && a.n == b.n && a.h == b.h && a.status == b.status && a.reason == b.reason &&
-                a.iterations == b.iterations && a.rate == b.rate && a.residual == b.residual)
-        << "cell " << i;
-  }
+  expect_same_cells(whole, merged);
   EXPECT_FALSE(merged.shard);
   EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2]}), RequestError);           // one missing
   EXPECT_THROW((void)merge_shards({parts[0], parts[1], parts[2], parts[2]}), RequestError); // one repeated
@@ -157,21 +159,9 @@ TEST(Sweep, ShardsMergeToTheUnshardedSweep) {
 // The farm path (MPI ranks in the CLI): cells computed in another order and passed as bytes give the threads'
 // result bit for bit; a process that only computes for the farm returns no cells.
 TEST(Sweep, FarmGivesTheSameCellsAsThreads) {
-  SweepRequest req;
-  req.problem.kind = ProblemKind::paper_sine;
-  req.solver.differential = Differential::exact;
-  req.n = {2, 3, 7};
-  req.h = {0.125, 2.0, 64.0};
-  const SweepResult threads = sweep(req);
+  const SweepRequest req = small_sine_grid(Differential::exact, {2, 3, 7});
   const ReversedFarm farm;
-  const SweepResult farmed = sweep(req, {}, {}, &farm);
-  ASSERT_EQ(farmed.cells.size(), threads.cells.size());
-  for (std::size_t i = 0; i < threads.cells.size(); ++i) {
-    const SweepCell &a = threads.cells[i], &b = farmed.cells[i];
-    EXPECT_TRUE(a.method == b.method && a.n == b.n && a.h == b.h && a.status == b.status && a.reason == b.reason &&
-                a.iterations == b.iterations && a.rate == b.rate && a.residual == b.residual)
-        << "cell " << i;
-  }
+  expect_same_cells(sweep(req), sweep(req, {}, {}, &farm));
   const ReversedFarm worker(true);
   EXPECT_TRUE(sweep(req, {}, {}, &worker).cells.empty());
 }
