@@ -91,7 +91,7 @@ class BasinMap {
     if (r.status == Status::cancelled) return !(stop_ = true);
     Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
     slot.status = r.status;
-    slot.iterations = r.iterations;
+    slot.iterations = r.total_iterations();
     if (r.status == Status::converged) slot.y = Element(r.y);
     return true;
   }

@@ -32,6 +32,8 @@ constexpr std::pair<Stopping, std::string_view> kStoppingNames[] = {
 constexpr std::pair<Globalization, std::string_view> kGlobalizationNames[] = {
     {Globalization::none, "none"}, {Globalization::line_search, "line-search"},
     {Globalization::trust_region, "trust-region"}};
+constexpr std::pair<Predictor, std::string_view> kPredictorNames[] = {
+    {Predictor::none, "none"}, {Predictor::lie_euler, "lie-euler"}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {
@@ -56,6 +58,7 @@ std::string_view to_string(Integrator v) { return name_of(kIntegratorNames, v); 
 std::string_view to_string(LinearSolver v) { return name_of(kLinearSolverNames, v); }
 std::string_view to_string(Stopping v) { return name_of(kStoppingNames, v); }
 std::string_view to_string(Globalization v) { return name_of(kGlobalizationNames, v); }
+std::string_view to_string(Predictor v) { return name_of(kPredictorNames, v); }
 std::optional<Status> status_from_string(std::string_view s) { return value_of(kStatusNames, s); }
 std::optional<ProblemKind> problem_from_string(std::string_view s) { return value_of(kProblemNames, s); }
 std::optional<Method> method_from_string(std::string_view s) { return value_of(kMethodNames, s); }
@@ -66,5 +69,6 @@ std::optional<Stopping> stopping_from_string(std::string_view s) { return value_
 std::optional<Globalization> globalization_from_string(std::string_view s) {
   return value_of(kGlobalizationNames, s);
 }
+std::optional<Predictor> predictor_from_string(std::string_view s) { return value_of(kPredictorNames, s); }
 
 }  // namespace lienewton

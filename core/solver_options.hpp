@@ -15,6 +15,8 @@ struct SolverOptions {
   bool include_iterates = false;  // keep every iterate y_n in the trace (solve only; sweeps and steps drop them)
   // Newton only: none = the paper's full steps; line-search, trust-region (solvers/globalization.hpp)
   Globalization globalization = Globalization::none;
+  // Reach h through h_0 < h_1 < ... < h, each stage started at the previous root (solvers/continuation.hpp).
+  bool continuation = false;
   // Wall and CPU time of every trace record. Basin maps turn it off: reading the thread's CPU clock is a system
   // call that costs more than an SO(3) iteration. The whole solve is timed either way.
   bool timed = true;

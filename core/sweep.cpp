@@ -132,7 +132,7 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     s.solver.include_iterates = false;
     const SolveResult r = solve(s, poll);
     if (r.status == Status::cancelled) return std::nullopt;
-    return SweepCell{s.solver.method, s.problem.n, s.h, r.status, r.reason, r.iterations, r.rate, r.residual, r.seconds};
+    return SweepCell{s.solver.method, s.problem.n, s.h, r.status, r.reason, r.total_iterations(), r.rate, r.residual, r.seconds};
   };
   // Files a finished cell in its grid slot (any order, any thread or process) and reports it.
   const auto file_cell = [&](std::size_t i, SweepCell&& cell) {

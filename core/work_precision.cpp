@@ -25,7 +25,7 @@ std::vector<double> default_step_sizes() {
 
 IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, double h) {
   IntegrateRequest r{.problem = req.problem, .solver = req.solver, .h = h, .t_end = req.t_end,
-                     .integrator = c.integrator, .reference = false};
+                     .integrator = c.integrator, .predictor = req.predictor, .reference = false};
   r.solver.method = c.method;
   r.solver.differential = c.differential;
   return r;

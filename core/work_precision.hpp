@@ -21,6 +21,7 @@ struct WorkPrecisionRequest {
   double t_end = 1.0;
   std::vector<WorkPrecisionChoice> choices{};
   std::vector<double> h{};  // default: 2^-2 .. 2^-7
+  Predictor predictor = Predictor::lie_euler;  // where every stage's iteration starts (IntegrateRequest)
 };
 
 struct WorkPrecisionPoint {

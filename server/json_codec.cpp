@@ -196,6 +196,7 @@ void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s
   if (auto x = f["stopping"]) s.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
   if (auto x = f["globalization"])
     s.globalization = read_enum(*x, "globalization", globalization_from_string, kAllGlobalizations);
+  if (auto x = f["continuation"]) s.continuation = read_bool(*x, "continuation");
   if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
 }
 
@@ -249,7 +250,8 @@ json parse_body(std::string_view text) {
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
-                      "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization"});
+                      "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization",
+                      "continuation"});
   SolveRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -260,7 +262,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver", "threads", "shard", "globalization"});
+                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -294,7 +296,8 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
-                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization"});
+                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization",
+                      "continuation", "predictor"});
   IntegrateRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -302,6 +305,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
   if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
   if (auto x = f["integrator"]) r.integrator = read_enum(*x, "integrator", integrator_from_string, kAllIntegrators);
   if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
+  if (auto x = f["predictor"]) r.predictor = read_enum(*x, "predictor", predictor_from_string, kAllPredictors);
   if (r.t_end / r.h > limits.max_steps) {
     fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
   }
@@ -310,11 +314,12 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping", "linear_solver", "globalization"});
+                      "stopping", "linear_solver", "globalization", "continuation", "predictor"});
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
   if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
+  if (auto x = f["predictor"]) r.predictor = read_enum(*x, "predictor", predictor_from_string, kAllPredictors);
   if (auto x = f["choices"]) {
     const auto& arr = read_array(*x, "choices", 1, 64, "choice objects");
     for (std::size_t i = 0; i < arr.size(); ++i) {
@@ -539,6 +544,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
   if (!t.step_kind.empty()) j["step_kind"] = t.step_kind;
   if (t.step_length) j["step_length"] = finite_or_null(*t.step_length);
   if (t.trust_radius) j["trust_radius"] = finite_or_null(*t.trust_radius);
+  if (t.stage_h) j["stage_h"] = finite_or_null(*t.stage_h);
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;
 }
@@ -563,6 +569,13 @@ json to_json(const SolveResult& r, bool include_iterates) {
          {"cpu_seconds", finite_or_null(r.cpu_seconds)},
          {"linear_solver", r.linear_solver}};
   if (r.algebra_residual) j["algebra_residual"] = finite_or_null(*r.algebra_residual);
+  if (!r.continuation.empty()) {
+    json stages = json::array();
+    for (const ContinuationStage& s : r.continuation)
+      stages.push_back(json{{"h", finite_or_null(s.h)}, {"status", std::string(to_string(s.status))},
+                            {"iterations", s.iterations}, {"residual", finite_or_null(s.residual)}});
+    j["continuation"] = json{{"stages", std::move(stages)}, {"total_iterations", r.total_iterations()}};
+  }
   return j;
 }
 
@@ -612,6 +625,8 @@ json to_json(const IntegrateResult& r) {
               {"energy_drift", optional_number(r.energy_drift)},
               {"initial_energy", optional_number(r.initial_energy)},
               {"orthogonality_error", finite_or_null(r.orthogonality_error)},
+              {"total_iterations", r.total_iterations},
+              {"mean_iterations", finite_or_null(r.mean_iterations)},
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},
               {"frame_times", std::move(times)},

@@ -68,6 +68,16 @@ json schemas() {
       "1/2 ||f||^2 along y exp(alpha u) (Version 1) or v + alpha u (Version 2), Levenberg-Marquardt "
       "(D^T D + mu I) u = -D^T f when Newton's step fails; trust-region = dogleg on 1/2 ||f + D s||^2");
   globalization["default"] = "none";
+  const json continuation = json{
+      {"type", "boolean"}, {"default", false},
+      {"description", "reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is retried at "
+                      "the geometric mean of its h and the last reached one), each stage started at the previous root; "
+                      "the result's continuation lists the stages, and only the solve at h decides the status"}};
+  json predictor = enum_schema(kAllPredictors,
+                               "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
+                               "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "
+                               "residual is the smaller");
+  predictor["default"] = "lie-euler";
   const json status = enum_schema(kAllStatuses, "how the solve ended");
   const json h = schema_of(fields::h);
   const json n = schema_of(fields::n);
@@ -89,7 +99,7 @@ json schemas() {
                                             "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
                                             "equation's z")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
+                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -103,6 +113,8 @@ json schemas() {
                                                {"description", "globalised Newton only: how u_{n-1} was found"}}},
                             {"step_length", nullable_number("line search only: the accepted alpha of y_{n-1} exp(alpha u)")},
                             {"trust_radius", nullable_number("trust region only: the radius u_{n-1} was taken in")},
+                            {"stage_h", nullable_number("continuation only: the h of the stage this iterate belongs to "
+                                                        "(streams carry every stage's records, the result's trace the last)")},
                             {"y", matrix("iterate, only with include_iterates")}};
   s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds", "cpu_seconds"}, false);
   s["SolveResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"iterations", integer("iterations done")},
@@ -118,7 +130,14 @@ json schemas() {
                              {"y", matrix("the returned iterate y_iterate")}, {"trace", array_of(ref("TraceRecord"))},
                              {"seconds", number("wall time")},
                              {"cpu_seconds", number("solver CPU time of the whole solve (see TraceRecord.cpu_seconds)")},
-                             {"linear_solver", json{{"type", "string"}}}},
+                             {"linear_solver", json{{"type", "string"}}},
+                             {"continuation", object({{"stages", array_of(object({{"h", number("this stage's step size")},
+                                                                                   {"status", status},
+                                                                                   {"iterations", integer("")},
+                                                                                   {"residual", nullable_number("||f(y)|| at this stage's h")}},
+                                                                                  {}, false))},
+                                                      {"total_iterations", integer("summed over the stages")}},
+                                                     {}, false)}},
                             {"status", "reason", "iterations", "rate", "rate_reliable", "iterate", "residual", "floor",
                              "orthogonality_error", "z_adjustment", "reorthogonalisations", "y", "trace", "seconds",
                              "cpu_seconds", "linear_solver"}, false);
@@ -126,6 +145,7 @@ json schemas() {
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
                               {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization},
+                              {"continuation", continuation},
                               {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
                                                {"description", "threads of this sweep (0: all cores)"}}},
                               {"shard", object({{"index", integer("this part, 0 <= index < count")},
@@ -148,6 +168,7 @@ json schemas() {
                               {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
                               {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
                               {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping}, {"linear_solver", linear_solver},
+                              {"globalization", globalization}, {"continuation", continuation},
                               {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
                                             {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
                                                             "beyond --max-output-values numbers: 413)"}}},
@@ -182,7 +203,8 @@ json schemas() {
                                   {"method", method}, {"differential", differential}, {"tol", tol},
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
-                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
+                                  {"predictor", predictor},
+                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -190,7 +212,10 @@ json schemas() {
                                  {"global_error", nullable_number("||y_N - y_ref(t_end)||_F")},
                                  {"energy_drift", nullable_number("rigid body: max relative energy change")},
                                  {"initial_energy", nullable_number("rigid body: kinetic energy at t = 0")},
-                                 {"orthogonality_error", nullable_number("")}, {"y", matrix("final state")},
+                                 {"orthogonality_error", nullable_number("")},
+                                 {"total_iterations", integer("iterations summed over every stage of every step")},
+                                 {"mean_iterations", nullable_number("total_iterations per step")},
+                                 {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
                                  {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
                                 {}, false);
@@ -198,7 +223,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}});
+                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

@@ -71,6 +71,15 @@ Words words(LinearSolver s) {
   return {};
 }
 
+Words words(Globalization g) {
+  switch (g) {
+    case Globalization::none: return {"None (the paper's full steps)", "plain", "Newton's full step every iteration, as the paper"};
+    case Globalization::line_search: return {"Line search (Armijo, LM fallback)", "line search", "Armijo backtracking on 1/2 ||f||^2, Levenberg-Marquardt when Newton's step is no descent"};
+    case Globalization::trust_region: return {"Trust region (dogleg)", "trust region", "dogleg steps on 1/2 ||f + D s||^2 inside a radius"};
+  }
+  return {};
+}
+
 Words words(Status s) {
   switch (s) {
     case Status::converged: return {"converged", "converged", "converged: \u2016f(y)\u2016 \u2264 tol"};
@@ -161,6 +170,7 @@ json openapi_labels() {
             {"differential", entries(kAllDifferentials)},
             {"integrator", entries(kAllIntegrators)},
             {"linear_solver", entries(kAllLinearSolvers)},
+            {"globalization", entries(kAllGlobalizations)},
             {"status", statuses},
             {"heatmap_metric", entries(render::kAllHeatmapMetrics)}}},
           {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()},

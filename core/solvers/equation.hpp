@@ -55,6 +55,13 @@ class Equation {
     return Equation(group, std::move(z), 0.0, nullptr, std::move(f), std::move(df));
   }
 
+  // The same implicit Euler equation at another step size h (continuation's stages), starting where this one does.
+  Equation at_step(double h) const {
+    Equation e = *this;
+    e.h_ = h;
+    return e;
+  }
+
   const G& group() const { return group_; }
   const Element& z() const { return z_; }
   double h() const { return h_; }

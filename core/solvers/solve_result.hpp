@@ -28,7 +28,17 @@ struct TraceRecord {
   std::string step_kind;
   std::optional<double> step_length;
   std::optional<double> trust_radius;
+  std::optional<double> stage_h;   // continuation only: the h of the stage this iterate belongs to
   double distance_to_pi() const { return std::numbers::pi - angle; }
+};
+
+// One stage of a continued solve (solvers/continuation.hpp): the equation at step size h, started at the previous
+// stage's solution.
+struct ContinuationStage {
+  double h = 0;
+  Status status = Status::max_iterations;
+  int iterations = 0;
+  double residual = 0;  // ||f(y)|| at this stage's h of the stage's returned y
 };
 
 struct SolveResult {
@@ -49,6 +59,15 @@ struct SolveResult {
   double seconds = 0;           // wall time
   double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded)
   std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
+  // continuation only: every stage, the last at the requested h (whose solve is this result's status, trace, y)
+  std::vector<ContinuationStage> continuation;
+  // Newton iterations the answer cost: summed over the continuation's stages, else iterations.
+  int total_iterations() const {
+    if (continuation.empty()) return iterations;
+    int total = 0;
+    for (const ContinuationStage& s : continuation) total += s.iterations;
+    return total;
+  }
 };
 
 // Called once per trace record as it is computed; return false to cancel the solve (status cancelled).

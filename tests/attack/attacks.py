@@ -163,6 +163,30 @@ def bad_y0(t):
     return expect_refusal(t, "/api/v1/solve", '{"n": 3, "y0": [[1,0,0],[0,1,0],[0,0,null]]}', {400}, "y0")
 
 
+# ---------------------------------------------------------------- continuation and predictors
+def bad_continuation(t):
+    expect_refusal(t, "/api/v1/solve", '{"n": 3, "continuation": "yes"}', {400, 422}, "continuation")
+    expect_refusal(t, "/api/v1/sweep", '{"n": [3], "h": [1], "continuation": 1}', {400, 422}, "continuation")
+    expect_refusal(t, "/api/v1/basins", '{"n": 3, "size": 4, "continuation": [true]}', {400, 422}, "continuation")
+    return expect_refusal(t, "/api/v1/work-precision", '{"continuation": null, "predictor": 3}', {400, 422}, "predictor")
+
+
+def bad_predictor(t):
+    expect_refusal(t, "/api/v1/integrate", '{"predictor": "newton"}', {400, 422}, "predictor")
+    return expect_refusal(t, "/api/v1/solve", '{"n": 3, "predictor": "lie-euler"}', {400}, "predictor")
+
+
+def deadline_inside_continuation(t):
+    # A continued cell whose stages iterate for about a minute at SO(16) by finite differences: the deadline
+    # (run_attacks.sh: --sweep-timeout 3) must end it inside the path, not after it.
+    body = json.dumps({"n": [16], "h": [1024], "methods": ["newton-group"], "differential": "finite-difference",
+                       "max_iterations": 10000, "continuation": True})
+    status, _, data, secs = t.request("POST", "/api/v1/sweep", body, timeout=40.0)
+    expect(status == 504, f"status {status}: {data[:120]!r}")
+    expect(secs < 6.0, f"504 after {secs:.1f} s with a 3 s deadline")
+    return f"504 after {secs:.1f} s"
+
+
 def deadline_inside_basin_map(t):
     # 128 x 128 starts at SO(12) by finite differences: far beyond the battery server's 3 s sweep deadline.
     body = json.dumps({"n": 12, "h": 32, "differential": "finite-difference", "size": 128})
@@ -484,7 +508,8 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            metrics_method_injection, slow_header_drip, idle_connections, deadline_inside_sweep_cell,
            iterates_output_cap, image_pixels_cap, deadline_inside_integration, heatmap_get_needs_grid,
            cross_site_work, ndjson_stream, sse_stream, stream_first_record_early, huge_basin_grid,
-           basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map]
+           basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
+           bad_continuation, bad_predictor, deadline_inside_continuation]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work]  # direct mode only: they start servers
 
 

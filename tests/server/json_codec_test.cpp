@@ -196,6 +196,39 @@ TEST(JsonCodec, StoppingRuleOnEveryRequest) {
   }
 }
 
+// continuation on every request that takes solver options (basins too), predictor on the integrating ones; a
+// wrong type is refused naming the field.
+TEST(JsonCodec, ContinuationAndPredictor) {
+  const json on = parse_body(R"({"continuation":true})");
+  EXPECT_FALSE(solve_request_from_json(parse_body("{}"), Limits{}).solver.continuation);
+  EXPECT_TRUE(solve_request_from_json(on, Limits{}).solver.continuation);
+  EXPECT_TRUE(sweep_request_from_json(on, Limits{}).solver.continuation);
+  EXPECT_TRUE(integrate_request_from_json(on, Limits{}).solver.continuation);
+  EXPECT_TRUE(work_precision_request_from_json(on, Limits{}).solver.continuation);
+  EXPECT_TRUE(basin_request_from_json(on, Limits{}).solve.solver.continuation);
+  EXPECT_EQ(integrate_request_from_json(parse_body("{}"), Limits{}).predictor, Predictor::lie_euler);
+  EXPECT_EQ(integrate_request_from_json(parse_body(R"({"predictor":"none"})"), Limits{}).predictor, Predictor::none);
+  EXPECT_EQ(work_precision_request_from_json(parse_body(R"({"predictor":"none"})"), Limits{}).predictor, Predictor::none);
+  for (const char* bad : {R"({"continuation":"yes"})", R"({"continuation":1})", R"({"continuation":[true]})"}) {
+    const json body = parse_body(bad);
+    for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
+                             failure_of([&] { sweep_request_from_json(body, Limits{}); }),
+                             failure_of([&] { integrate_request_from_json(body, Limits{}); }),
+                             failure_of([&] { work_precision_request_from_json(body, Limits{}); }),
+                             failure_of([&] { basin_request_from_json(body, Limits{}); })}) {
+      EXPECT_EQ(f.field, "continuation") << bad;
+    }
+  }
+  for (const char* bad : {R"({"predictor":"newton"})", R"({"predictor":1})", R"({"predictor":true})"}) {
+    const json body = parse_body(bad);
+    EXPECT_EQ(failure_of([&] { integrate_request_from_json(body, Limits{}); }).field, "predictor") << bad;
+    EXPECT_EQ(failure_of([&] { work_precision_request_from_json(body, Limits{}); }).field, "predictor") << bad;
+  }
+  const Failure on_solve = solve_failure(R"({"predictor":"lie-euler"})");  // a solve has no stages to predict
+  EXPECT_EQ(on_solve.code, "unknown_field");
+  EXPECT_EQ(on_solve.field, "predictor");
+}
+
 TEST(JsonCodec, SweepResultRoundTrips) {
   SweepResult s;
   SweepCell c;

@@ -6,7 +6,7 @@ import { el } from '../shared/dom.js';
 import { actions, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { frameStepper } from '../shared/frame_stepper.js';
-import { DIFFERENTIALS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
+import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
 import { resultList } from '../shared/summary.js';
 
@@ -16,6 +16,8 @@ export function createSolvePanel(root) {
     select('method', 'Method', METHODS, DEFAULTS.method),
     select('differential', 'Differential', DIFFERENTIALS, DEFAULTS.differential,
       'Ignored by the fixed-point method'),
+    select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'Newton methods only'),
+    select('continuation', 'Continuation in h', CONTINUATION, 'false', 'On: every stage streams, the last is at h'),
     limitFields(),
     field('y0', 'Start guess y\u2080 (JSON rows; empty: y\u2080 = z)', el('textarea', { name: 'y0', rows: 3,
       spellcheck: 'false', autocomplete: 'off' }), 'Filled when a basin map pixel is opened here'),
@@ -34,7 +36,8 @@ export function createSolvePanel(root) {
 
   async function run() {
     const request = { ...readCommon(form), method: value(form, 'method'),
-      differential: value(form, 'differential'), include_iterates: false };
+      differential: value(form, 'differential'), globalization: value(form, 'globalization'),
+      continuation: value(form, 'continuation') === 'true', include_iterates: false };
     const y0 = value(form, 'y0');
     if (y0) request.y0 = parseOr(y0);
     const records = [];

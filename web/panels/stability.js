@@ -5,7 +5,7 @@ import { ApiError, postImage, stream } from '../shared/api.js';
 import { el } from '../shared/dom.js';
 import { actions, checkboxes, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
-import { DIFFERENTIALS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label, mathText } from '../shared/labels.js';
+import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label, mathText } from '../shared/labels.js';
 import { NO_VALUE, isOutlier, metricScale, metricValue, rampCss } from '../shared/colormap.js';
 import { createGrid } from './grid.js';
 import { statusBadge } from '../shared/summary.js';
@@ -17,6 +17,8 @@ export function createStabilityPanel(root, { openSolve }) {
     select('problem', 'Problem', PROBLEMS, 'paper-linear'),
     checkboxes('methods', 'Methods', METHODS, METHOD_ORDER, ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
+    select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'The paper: none'),
+    select('continuation', 'Continuation in h', CONTINUATION, 'false', 'The paper: off'),
     range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
     range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2\u1d4f; the paper: \u221210 to 10'),
     number('tol', 'Tolerance', 1e-13),
@@ -71,7 +73,8 @@ export function createStabilityPanel(root, { openSolve }) {
   function openCell(cell) {
     const r = last.request;
     openSolve({ problem: r.problem, n: cell.n, h: cell.h, method: cell.method, differential: r.differential,
-      tol: r.tol, max_iterations: r.max_iterations, seed: r.seed });
+      tol: r.tol, max_iterations: r.max_iterations, seed: r.seed, globalization: r.globalization,
+      continuation: r.continuation });
   }
 
   form.addEventListener('submit', async (e) => {
@@ -80,7 +83,8 @@ export function createStabilityPanel(root, { openSolve }) {
       const request = { problem: value(form, 'problem'), methods: checkedValues(form, 'methods'),
         differential: value(form, 'differential'), n: wholeRange(form, 'n_lo', 'n_hi', 'N'),
         h: wholeRange(form, 'k_lo', 'k_hi', 'k').map((k) => 2 ** k), seed: value(form, 'seed'),
-        tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations') };
+        tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
+        globalization: value(form, 'globalization'), continuation: value(form, 'continuation') === 'true' };
       const grids = request.methods.map((method) => createGrid({ method, ns: request.n, hs: request.h,
         onShow: show, onOpen: openCell }));
       maps.replaceChildren(...grids.map((g) => g.element));

@@ -1,0 +1,134 @@
+// Continuation in h (issue 14, section 3; core/solvers/continuation.hpp): the path, its honesty against the
+// independent oracle (Eigen's matrix log and exp), the identity with the plain solve at small h, and cancellation.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "core/cancellation.hpp"
+#include "core/solve.hpp"
+#include "core/solvers/continuation.hpp"
+#include "residual_oracle.hpp"
+
+namespace lienewton {
+namespace {
+
+SolveRequest request(ProblemKind problem, int n, double h, Method method, bool continuation) {
+  SolveRequest r;
+  r.problem.kind = problem;
+  r.problem.n = n;
+  r.h = h;
+  r.solver.method = method;
+  r.solver.differential = Differential::exact;
+  r.solver.continuation = continuation;
+  return r;
+}
+
+TEST(Continuation, FirstStepIsTheLargestHalvingOfHNotAboveOneSixteenth) {
+  EXPECT_EQ(first_continuation_step(1.0 / 32), 1.0 / 32);
+  EXPECT_EQ(first_continuation_step(1.0 / 16), 1.0 / 16);
+  EXPECT_EQ(first_continuation_step(1.0), 1.0 / 16);
+  EXPECT_EQ(first_continuation_step(1024.0), 1.0 / 16);
+  EXPECT_EQ(first_continuation_step(0.1), 0.05);
+  EXPECT_EQ(first_continuation_step(3.0), 3.0 / 64);
+}
+
+// Below 1/16 the path is one stage: the plain solve itself.
+TEST(Continuation, SmallHIsThePlainSolve) {
+  const SolveResult plain = solve(request(ProblemKind::paper_sine, 6, 1.0 / 32, Method::newton_group, false));
+  const SolveResult continued = solve(request(ProblemKind::paper_sine, 6, 1.0 / 32, Method::newton_group, true));
+  ASSERT_EQ(continued.continuation.size(), 1u);
+  EXPECT_EQ(continued.continuation[0].h, 1.0 / 32);
+  EXPECT_EQ(continued.status, plain.status);
+  EXPECT_EQ(continued.iterations, plain.iterations);
+  EXPECT_EQ(continued.total_iterations(), plain.iterations);
+  EXPECT_EQ(continued.y, plain.y);
+  EXPECT_TRUE(plain.continuation.empty());
+}
+
+struct Cell {
+  ProblemKind problem;
+  int n;
+  double h;
+  Method method;
+};
+
+class ContinuedCell : public ::testing::TestWithParam<Cell> {};
+
+// Converged means ||f(y)|| <= tol at the requested h for the returned y, by the oracle (which rounds at ~1e-14 in
+// its own log: tol + 1e-13); the path ends at h, doubles while it does not fail, and its stages add up.
+TEST_P(ContinuedCell, ConvergedIsTrueAtTheRequestedH) {
+  const Cell c = GetParam();
+  const SolveRequest req = request(c.problem, c.n, c.h, c.method, true);
+  const SolveResult r = solve(req);
+  ASSERT_EQ(r.status, Status::converged) << r.reason;
+  ASSERT_FALSE(r.continuation.empty());
+  EXPECT_EQ(r.continuation.back().h, c.h);
+  EXPECT_EQ(r.continuation.back().status, Status::converged);
+  EXPECT_LE(r.continuation.front().h, kContinuationStart);
+  int total = 0;
+  for (std::size_t k = 0; k < r.continuation.size(); ++k) {
+    total += r.continuation[k].iterations;
+    if (k > 0 && r.continuation[k - 1].status == Status::converged) {
+      EXPECT_LE(r.continuation[k].h, 2.0 * r.continuation[k - 1].h);
+    }
+  }
+  EXPECT_EQ(r.total_iterations(), total);
+  const Oracle o = oracle(c.problem, c.h, req.problem.start(), r.y);
+  EXPECT_LE(o.residual, req.solver.tol + 1e-13);
+  EXPECT_NEAR(o.residual, r.residual, 1e-13);
+  EXPECT_LE(o.angle, std::numbers::pi);  // the root f of (3.6) sees: h g(y) inside log's branch
+}
+
+// Cells of the paper's grid where the plain Version 1 or 2 fails (measured: max_iterations, off_branch, diverged;
+// exact differential, seed 1) and the continued one converges; and two where both converge.
+const Cell kRescued[] = {{ProblemKind::paper_linear, 3, 32.0, Method::newton_group},
+                         {ProblemKind::paper_linear, 8, 32.0, Method::newton_group},
+                         {ProblemKind::paper_linear, 3, 16.0, Method::newton_algebra},
+                         {ProblemKind::paper_linear, 5, 64.0, Method::newton_algebra}};
+INSTANTIATE_TEST_SUITE_P(Rescued, ContinuedCell, ::testing::ValuesIn(kRescued));
+INSTANTIATE_TEST_SUITE_P(BothConverge, ContinuedCell,
+                         ::testing::Values(Cell{ProblemKind::paper_linear, 8, 4.0, Method::newton_group},
+                                           Cell{ProblemKind::paper_sine, 5, 8.0, Method::newton_group}));
+
+// Without continuation the rescued cells fail.
+TEST(Continuation, RescuedCellsFailWithoutIt) {
+  for (const Cell& c : kRescued) {
+    EXPECT_NE(solve(request(c.problem, c.n, c.h, c.method, false)).status, Status::converged)
+        << to_string(c.method) << " N = " << c.n << " h = " << c.h;
+  }
+}
+
+// The stream sees every stage's records tagged with their h; the result's trace is the last stage's.
+TEST(Continuation, StreamTagsEveryStageWithItsH) {
+  std::vector<double> tags;
+  const SolveResult r = solve(request(ProblemKind::paper_linear, 4, 1.0, Method::newton_group, true),
+                              [&](const TraceRecord& t) {
+                                tags.push_back(t.stage_h.value_or(-1.0));
+                                return true;
+                              });
+  ASSERT_EQ(r.status, Status::converged);
+  ASSERT_EQ(r.continuation.size(), 5u);  // 1/16, 1/8, 1/4, 1/2, 1
+  std::size_t records = 0;
+  for (const ContinuationStage& s : r.continuation) records += static_cast<std::size_t>(s.iterations) + 1;
+  ASSERT_EQ(tags.size(), records);
+  EXPECT_EQ(tags.front(), 1.0 / 16);
+  EXPECT_EQ(tags.back(), 1.0);
+  for (const TraceRecord& t : r.trace) EXPECT_EQ(t.stage_h, 1.0);
+}
+
+// A deadline that has passed stops the path in its first stage; the result says cancelled, and its residual is
+// the returned y's at the requested h (by the oracle), not at the stage's.
+TEST(Continuation, CancelledOnTheWayReportsTheResidualAtTheRequestedH) {
+  const CancellationToken expired(std::chrono::steady_clock::now(), nullptr, nullptr);
+  const CancellationScope scope(&expired);
+  const SolveRequest req = request(ProblemKind::paper_sine, 5, 8.0, Method::newton_group, true);
+  const SolveResult r = solve(req);
+  EXPECT_EQ(r.status, Status::cancelled);
+  ASSERT_EQ(r.continuation.size(), 1u);
+  EXPECT_EQ(r.continuation[0].h, 1.0 / 16);
+  EXPECT_NEAR(r.residual, oracle(req.problem.kind, req.h, req.problem.start(), r.y).residual, 1e-12);
+}
+
+}  // namespace
+}  // namespace lienewton
