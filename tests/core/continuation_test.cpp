@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "core/cancellation.hpp"
 #include "core/solve.hpp"
@@ -77,7 +78,7 @@ TEST_P(ContinuedCell, ConvergedIsTrueAtTheRequestedH) {
   const Oracle o = oracle(c.problem, c.h, req.problem.start(), r.y);
   EXPECT_LE(o.residual, req.solver.tol + 1e-13);
   EXPECT_NEAR(o.residual, r.residual, 1e-13);
-  EXPECT_LE(o.angle, std::numbers::pi);  // the root f of (3.6) sees: h g(y) inside log's branch
+  EXPECT_LE(o.angle, std::numbers::pi + 1e-9);  // a root f of (3.6) sees: h g(y) inside log's branch
 }
 
 // Cells of the paper's grid where the plain Version 1 or 2 fails (measured: max_iterations, off_branch, diverged;

@@ -57,12 +57,15 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{ProblemKind::paper_sine, 5, Integrator::implicit_euler, 1.0 / 32},
                       Case{ProblemKind::paper_sine, 5, Integrator::dirk_cg2, 1.0 / 8}));
 
-// One implicit Euler step from y(0) = z with either start: y_1 solves (1.1) by the oracle (Eigen's log and exp,
-// not the production ones) to 1e-12, and the two y_1 are the same root.
+// One implicit Euler step from y(0) = z with either start (N = 5, h = 1/16; measured 3 -> 2 and 8 -> 4 iterations):
+// both y_1 solve (1.1) by the oracle (Eigen's log and exp, not the production ones) to 1e-12. On paper-linear they
+// are the same root. On paper-sine (||h g(z)|| ~ 0.9) they are not: from z Newton settles on a root near z that is
+// 1.85 from the exact y(h) (the RKMK4 reference), from the predictor on the root 0.19 from it (implicit Euler's
+// local error at this h) -- the first step of the global error 2.6 below.
 TEST(Predictor, OneStepSolvesImplicitEulerByTheOracle) {
   for (ProblemKind problem : {ProblemKind::paper_linear, ProblemKind::paper_sine}) {
-    const double h = 1.0 / 8;
-    IntegrateRequest plain = run(problem, 6, Integrator::implicit_euler, h, h, Predictor::none);
+    const double h = 1.0 / 16;
+    IntegrateRequest plain = run(problem, 5, Integrator::implicit_euler, h, h, Predictor::none);
     IntegrateRequest predicted = plain;
     predicted.predictor = Predictor::lie_euler;
     const IntegrateResult a = integrate(plain), b = integrate(predicted);
@@ -74,8 +77,13 @@ TEST(Predictor, OneStepSolvesImplicitEulerByTheOracle) {
       EXPECT_LT(o.residual, 1e-12);
       EXPECT_LT(o.defect, 1e-12);
     }
-    EXPECT_LT((a.y - b.y).norm(), 1e-12);
-    EXPECT_LE(b.total_iterations, a.total_iterations);
+    if (problem == ProblemKind::paper_linear) {
+      EXPECT_LT((a.y - b.y).norm(), 1e-12);
+    } else {
+      EXPECT_GT(*a.global_error, 1.5);
+      EXPECT_LT(*b.global_error, 0.25);
+    }
+    EXPECT_LT(b.total_iterations, a.total_iterations);
   }
 }
 
