@@ -341,47 +341,6 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
   assert.equal(Number(await page.locator('#solve input[name="n"]').inputValue()), cell.n);
 });
 
-test('the stability map shows a Newton variant and continuation beside the paper\'s methods', async () => {
-  await tab('Stability map');
-  const panel = page.locator('#stability');
-  await panel.getByLabel('Differential').selectOption('exact');
-  await panel.getByLabel('Newton variant').selectOption('line-search');
-  await panel.getByLabel('Continuation in h').selectOption('true');
-  for (const [name, v] of [['n_lo', '3'], ['n_hi', '3'], ['k_lo', '3'], ['k_hi', '6']]) {
-    await panel.locator(`input[name="${name}"]`).fill(v);
-  }
-  const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/sweep'));
-  await panel.getByRole('button', { name: 'Run' }).click();
-  const request = JSON.parse((await sent).postData());
-  assert.equal(request.globalization, 'line-search');
-  assert.equal(request.continuation, true);
-  await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
-  const { body: variant } = await api('/api/v1/sweep', request);
-  const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false });
-  for (const cell of variant.cells) {
-    const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
-    assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
-  }
-  // The variant is not the paper's method under another name: the cells differ (continued cells cost more
-  // iterations in total, and some converge only continued).
-  assert.ok(variant.cells.some((c, i) => c.status !== paper.cells[i].status || c.iterations !== paper.cells[i].iterations));
-  // A cell opens in Solve with the same variant, and the solve sent carries it.
-  const cell = variant.cells[0];
-  const solveSent = page.waitForRequest((r) => r.url().endsWith('/api/v1/solve'));
-  await panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`).click();
-  const solveRequest = JSON.parse((await solveSent).postData());
-  assert.equal(solveRequest.globalization, 'line-search');
-  assert.equal(solveRequest.continuation, true);
-  await page.locator('#solve [data-result="iterations"]').waitFor();
-  assert.equal(await page.locator('#solve select[name="continuation"]').inputValue(), 'true');
-  // Back to the paper's setup for the tests after this one.
-  await page.locator('#solve select[name="globalization"]').selectOption('none');
-  await page.locator('#solve select[name="continuation"]').selectOption('false');
-  await tab('Stability map');
-  await panel.getByLabel('Newton variant').selectOption('none');
-  await panel.getByLabel('Continuation in h').selectOption('false');
-});
-
 test('the work-precision chart has one series per ticked choice', async () => {
   await tab('Speed vs accuracy');
   const panel = page.locator('#speed');
@@ -564,6 +523,48 @@ test('on a touch phone a first tap shows a cell, a second tap opens it', async (
   await phone.locator('#solve [data-result="iterations"]').waitFor();
   await phone.screenshot({ path: join(shots, 'solve-phone.png'), fullPage: true });
   await phone.close();
+});
+
+// After the screenshots, so that they show the paper's setup.
+test('the stability map shows a Newton variant and continuation beside the paper\'s methods', async () => {
+  await tab('Stability map');
+  const panel = page.locator('#stability');
+  await panel.getByLabel('Differential').selectOption('exact');
+  await panel.getByLabel('Newton variant').selectOption('line-search');
+  await panel.getByLabel('Continuation in h').selectOption('true');
+  for (const [name, v] of [['n_lo', '3'], ['n_hi', '3'], ['k_lo', '3'], ['k_hi', '6']]) {
+    await panel.locator(`input[name="${name}"]`).fill(v);
+  }
+  const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/sweep'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const request = JSON.parse((await sent).postData());
+  assert.equal(request.globalization, 'line-search');
+  assert.equal(request.continuation, true);
+  await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
+  const { body: variant } = await api('/api/v1/sweep', request);
+  const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false });
+  for (const cell of variant.cells) {
+    const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
+    assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
+  }
+  // The variant is not the paper's method under another name: the cells differ (continued cells cost more
+  // iterations in total, and some converge only continued).
+  assert.ok(variant.cells.some((c, i) => c.status !== paper.cells[i].status || c.iterations !== paper.cells[i].iterations));
+  // A cell opens in Solve with the same variant, and the solve sent carries it.
+  const cell = variant.cells[0];
+  const solveSent = page.waitForRequest((r) => r.url().endsWith('/api/v1/solve'));
+  await panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`).click();
+  const solveRequest = JSON.parse((await solveSent).postData());
+  assert.equal(solveRequest.globalization, 'line-search');
+  assert.equal(solveRequest.continuation, true);
+  await page.locator('#solve [data-result="iterations"]').waitFor();
+  assert.equal(await page.locator('#solve select[name="continuation"]').inputValue(), 'true');
+  // Back to the paper's setup for the tests after this one.
+  await page.locator('#solve select[name="globalization"]').selectOption('none');
+  await page.locator('#solve select[name="continuation"]').selectOption('false');
+  await tab('Stability map');
+  await panel.getByLabel('Newton variant').selectOption('none');
+  await panel.getByLabel('Continuation in h').selectOption('false');
 });
 
 test('no console errors beyond the deliberate bad request, nothing fetched from outside', () => {
