@@ -7,7 +7,6 @@
 #include <cmath>
 #include <mutex>
 #include <numeric>
-#include <set>
 
 #include "core/basins.hpp"
 #include "core/byte_buffer.hpp"
@@ -25,7 +24,21 @@ struct BasinPlane {
   std::vector<Method> methods;
   SolverOptions solver;  // basin_map() turns off per-iterate timing and iterates
   int threads = 0;
+  std::optional<Shard> shard;  // only the rows basin_shard_rows(size, shard)
 };
+
+// Whether converged ys a and b are one root: ||log(a^-1 b)|| < kRootDistance. ||I - R||_F / sqrt(2) <= ||log R||
+// (chord against arc, in the coordinate norm), so ys farther apart than that in Frobenius norm need no log.
+template <LieGroup G>
+bool same_root(const G& group, const typename G::Element& a, const typename G::Element& b) {
+  if ((b - a).norm() > std::sqrt(2.0) * kRootDistance * 1.01) return false;
+  double angle = 0;
+  try {
+    return group.log_vector(group.compose(group.inverse(a), b), angle).norm() < kRootDistance;
+  } catch (const LogDomainError&) {
+    return false;
+  }
+}
 
 // What one solve left in its pixel until its row is classified.
 template <LieGroup G>
@@ -45,18 +58,22 @@ class BasinMap {
 
   BasinMap(const Equation<G>& eq, const BasinPlane& plane, const BasinRowCallback& on_row, const WorkFarm* farm)
       : group_(eq.group()), eq_(eq), plane_(untimed(plane)), on_row_(on_row), farm_(farm), size_(plane.size),
-        methods_(static_cast<int>(plane.methods.size())), b1_(plane.b1), b2_(plane.b2) {
+        methods_(static_cast<int>(plane.methods.size())), rows_(basin_shard_rows(plane.size, plane.shard)),
+        b1_(plane.b1), b2_(plane.b2) {
     result_.grid = {basin_axis(size_, plane.radius), plane.radius, plane.b1, plane.b2, Eigen::MatrixXd(eq.z())};
+    result_.shard = plane.shard;
   }
 
   BasinResult run() {
     const int per_row = size_ * methods_;
-    slots_.resize(static_cast<std::size_t>(size_) * per_row);
-    remaining_ = std::vector<std::atomic<int>>(static_cast<std::size_t>(size_));
+    // Items and slots are numbered by the row's place in rows_ (the part's rows), then column, then method.
+    const int row_count = static_cast<int>(rows_.size());
+    slots_.resize(rows_.size() * static_cast<std::size_t>(per_row));
+    remaining_ = std::vector<std::atomic<int>>(rows_.size());
     for (auto& r : remaining_) r = per_row;
     if (farm_) {
       // A farm's items are whole rows (a pixel is too small to send to another process).
-      std::vector<int> rows(static_cast<std::size_t>(size_));
+      std::vector<int> rows(rows_.size());
       std::iota(rows.begin(), rows.end(), 0);
       if (!farm_->run(rows, [&](int row) { return solve_row(row, per_row); },
                       [&](int row, const std::string& bytes) { return file_row(row, per_row, bytes); }))
@@ -69,8 +86,8 @@ class BasinMap {
         return !stop_.load();
       });
     }
-    result_.complete = static_cast<int>(result_.rows.size()) == size_;
-    summarise();
+    result_.complete = static_cast<int>(result_.rows.size()) == row_count;
+    result_.methods = basin_summaries(result_.rows, plane_.methods);
     return std::move(result_);
   }
 
@@ -81,7 +98,8 @@ class BasinMap {
     const int row = k / per_row, column = (k % per_row) / methods_, m = k % methods_;
     Equation<G> eq = eq_;
     const std::vector<double>& axis = result_.grid.axis;
-    eq.start_at(group_.times_exp(eq_.z(), Vector(axis[column] * b1_ + axis[row] * b2_)));
+    const double b = axis[static_cast<std::size_t>(rows_[static_cast<std::size_t>(row)])];
+    eq.start_at(group_.times_exp(eq_.z(), Vector(axis[static_cast<std::size_t>(column)] * b1_ + b * b2_)));
     SolveResult r;
     try {
       r = run_method(plane_.methods[static_cast<std::size_t>(m)], eq, plane_.solver, {});
@@ -133,10 +151,11 @@ class BasinMap {
   // order whatever the schedule.
   void classify_completed_rows() {
     std::lock_guard lock(mutex_);
-    while (next_row_ < size_ && remaining_[static_cast<std::size_t>(next_row_)].load() == 0 && !stop_.load()) {
+    while (next_row_ < static_cast<int>(rows_.size()) &&
+           remaining_[static_cast<std::size_t>(next_row_)].load() == 0 && !stop_.load()) {
       BasinRow row;
-      row.row = next_row_;
-      row.b = result_.grid.axis[static_cast<std::size_t>(next_row_)];
+      row.row = rows_[static_cast<std::size_t>(next_row_)];
+      row.b = result_.grid.axis[static_cast<std::size_t>(row.row)];
       row.pixels.assign(static_cast<std::size_t>(methods_), std::vector<BasinPixel>(static_cast<std::size_t>(size_)));
       for (int column = 0; column < size_; ++column) {
         for (int m = 0; m < methods_; ++m) {
@@ -154,18 +173,10 @@ class BasinMap {
     }
   }
 
-  // The id of the root y belongs to, adding a root when it is new. ||I - R||_F / sqrt(2) <= ||log R|| (chord
-  // against arc, in the coordinate norm), so roots farther than that in Frobenius norm need no log.
+  // The id of the root y belongs to, adding a root when it is new.
   int root_of(const Element& y, std::vector<int>& new_roots) {
-    for (std::size_t i = 0; i < root_ys_.size(); ++i) {
-      if ((y - root_ys_[i]).norm() > std::sqrt(2.0) * kRootDistance * 1.01) continue;
-      double angle = 0;
-      try {
-        if (group_.log_vector(group_.compose(group_.inverse(root_ys_[i]), y), angle).norm() < kRootDistance)
-          return static_cast<int>(i);
-      } catch (const LogDomainError&) {
-      }
-    }
+    for (std::size_t i = 0; i < root_ys_.size(); ++i)
+      if (same_root(group_, root_ys_[i], y)) return static_cast<int>(i);
     BasinRoot root;
     root.id = static_cast<int>(root_ys_.size());
     root.y = y;
@@ -177,31 +188,6 @@ class BasinMap {
     result_.roots.push_back(std::move(root));
     new_roots.push_back(result_.roots.back().id);
     return result_.roots.back().id;
-  }
-
-  void summarise() {
-    for (int m = 0; m < methods_; ++m) {
-      BasinMethodSummary s;
-      s.method = plane_.methods[static_cast<std::size_t>(m)];
-      std::set<int> reached;
-      double iterations = 0;
-      for (const BasinRow& row : result_.rows) {
-        for (const BasinPixel& p : row.pixels[static_cast<std::size_t>(m)]) {
-          ++s.pixels;
-          const auto status = static_cast<std::size_t>(std::find(std::begin(kAllStatuses), std::end(kAllStatuses),
-                                                                 p.status) - std::begin(kAllStatuses));
-          ++s.status_counts[status];
-          if (p.status != Status::converged) continue;
-          ++s.converged;
-          iterations += p.iterations;
-          reached.insert(p.root);
-        }
-      }
-      s.basins = static_cast<int>(reached.size());
-      if (s.pixels > 0) s.converged_fraction = static_cast<double>(s.converged) / s.pixels;
-      if (s.converged > 0) s.mean_iterations = iterations / s.converged;
-      result_.methods.push_back(s);
-    }
   }
 
   // No per-iterate clock (a system call costs more than an SO(3) iteration) and no stored iterates.
@@ -217,6 +203,7 @@ class BasinMap {
   const BasinRowCallback& on_row_;
   const WorkFarm* farm_;
   int size_, methods_;
+  std::vector<int> rows_;  // the map's rows this part computes, in order
   Vector b1_, b2_;
   BasinResult result_;
   std::vector<Slot<G>> slots_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <set>
 
 #include "basin_map.hpp"
 #include "groups/polar_factor.hpp"
@@ -79,13 +80,16 @@ void validate(const BasinRequest& req) {
   if (std::abs(b1.dot(b2)) > kParallelCosine)
     validation::unprocessable(req.b2 ? "b2" : "b1", "b1 and b2 are parallel: they span no plane");
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
+  if (req.shard && !(req.shard->count >= 1)) validation::invalid("shard.count", "shard.count must be at least 1");
+  if (req.shard && !(req.shard->index >= 0 && req.shard->index < req.shard->count))
+    validation::invalid("shard.index", "shard.index must be in [0, shard.count)");
 }
 
 BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   validate(req);
   const auto start = std::chrono::steady_clock::now();
   const BasinGrid grid = basin_grid(req);
-  const BasinPlane plane{grid.b1, grid.b2, req.size, req.radius, req.methods, solver_of(req), req.threads};
+  const BasinPlane plane{grid.b1, grid.b2, req.size, req.radius, req.methods, solver_of(req), req.threads, req.shard};
   BasinResult result = with_group(dimension_of(req), [&](const auto& group) {
     using G = std::decay_t<decltype(group)>;
     const auto field = field_of(group, req);
@@ -94,6 +98,136 @@ BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, cons
   });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::vector<int> basin_shard_rows(int size, const std::optional<Shard>& shard) {
+  std::vector<int> rows;
+  const int index = shard ? shard->index : 0, count = shard ? shard->count : 1;
+  for (int r = index; r < size; r += count) rows.push_back(r);
+  return rows;
+}
+
+std::vector<BasinMethodSummary> basin_summaries(const std::vector<BasinRow>& rows, const std::vector<Method>& methods) {
+  std::vector<BasinMethodSummary> summaries;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    BasinMethodSummary s;
+    s.method = methods[m];
+    std::set<int> reached;
+    double iterations = 0;
+    for (const BasinRow& row : rows) {
+      for (const BasinPixel& p : row.pixels[m]) {
+        ++s.pixels;
+        const auto status = static_cast<std::size_t>(std::find(std::begin(kAllStatuses), std::end(kAllStatuses),
+                                                               p.status) - std::begin(kAllStatuses));
+        ++s.status_counts[status];
+        if (p.status != Status::converged) continue;
+        ++s.converged;
+        iterations += p.iterations;
+        reached.insert(p.root);
+      }
+    }
+    s.basins = static_cast<int>(reached.size());
+    if (s.pixels > 0) s.converged_fraction = static_cast<double>(s.converged) / s.pixels;
+    if (s.converged > 0) s.mean_iterations = iterations / s.converged;
+    summaries.push_back(s);
+  }
+  return summaries;
+}
+
+namespace {
+
+std::vector<Method> methods_of(const BasinResult& map) {
+  std::vector<Method> methods;
+  for (const BasinMethodSummary& s : map.methods) methods.push_back(s.method);
+  return methods;
+}
+
+bool same_grid(const BasinGrid& a, const BasinGrid& b) {
+  return a.axis == b.axis && a.radius == b.radius && a.b1 == b.b1 && a.b2 == b.b2 && a.z == b.z;
+}
+
+// Checks that parts are every shard of one map, each once and complete; returns, per row of the map, the part
+// holding it.
+std::vector<std::size_t> row_owners(const std::vector<BasinResult>& parts) {
+  if (parts.empty() || !parts.front().shard) validation::invalid("shard", "merge needs the results of a sharded basin map");
+  const BasinResult& first = parts.front();
+  const int count = first.shard->count;
+  const std::size_t size = first.grid.axis.size();
+  std::vector<char> have_part(static_cast<std::size_t>(count), 0);
+  std::vector<std::size_t> owner(size, parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const BasinResult& part = parts[k];
+    if (!part.shard) validation::invalid("shard", "a basin map without shard is not part of a sharded map");
+    if (part.shard->count != count || !same_grid(part.grid, first.grid) || methods_of(part) != methods_of(first))
+      validation::invalid("shard", "the basin maps come from different maps or shardings");
+    const int index = part.shard->index;
+    if (index < 0 || index >= count) validation::invalid("shard", "shard index out of range");
+    if (have_part[static_cast<std::size_t>(index)]++)
+      validation::invalid("shard", "shard " + std::to_string(index) + " is given twice");
+    if (!part.complete) validation::invalid("shard", "shard " + std::to_string(index) + " stopped early");
+    std::vector<int> held;
+    for (const BasinRow& row : part.rows) held.push_back(row.row);
+    if (held != basin_shard_rows(static_cast<int>(size), part.shard))
+      validation::invalid("shard", "shard " + std::to_string(index) + " does not hold its rows");
+    for (const BasinRow& row : part.rows)
+      if (row.pixels.size() != first.methods.size() ||
+          std::any_of(row.pixels.begin(), row.pixels.end(), [&](const auto& p) { return p.size() != size; }))
+        validation::invalid("shard", "row " + std::to_string(row.row) + " of shard " + std::to_string(index) +
+                                         " does not have a pixel per column and method");
+    for (int r : held) owner[static_cast<std::size_t>(r)] = k;
+  }
+  for (int i = 0; i < count; ++i)
+    if (!have_part[static_cast<std::size_t>(i)])
+      validation::invalid("shard", "shard " + std::to_string(i) + " of " + std::to_string(count) + " is missing");
+  return owner;
+}
+
+}  // namespace
+
+BasinResult merge_shards(const std::vector<BasinResult>& parts) {
+  const std::vector<std::size_t> owner = row_owners(parts);
+  const std::vector<Method> methods = methods_of(parts.front());
+  BasinResult merged;
+  merged.grid = parts.front().grid;
+  merged.complete = true;
+  for (const BasinResult& part : parts) merged.seconds += part.seconds;
+  // The parts' root ids, in the order the unsharded map meets them (pixel order), mapped to global ids.
+  std::vector<std::vector<int>> global_id(parts.size());
+  std::vector<std::size_t> next_row(parts.size(), 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) global_id[k].assign(parts[k].roots.size(), -1);
+  with_group(static_cast<int>(merged.grid.z.rows()), [&](const auto& group) {
+    using Element = typename std::decay_t<decltype(group)>::Element;
+    std::vector<Element> root_ys;
+    const auto global_root = [&](std::size_t k, int local, std::vector<int>& new_roots) {
+      if (local < 0 || local >= static_cast<int>(parts[k].roots.size()))
+        validation::invalid("shard", "a pixel of shard " + std::to_string(parts[k].shard->index) + " names no root");
+      int& id = global_id[k][static_cast<std::size_t>(local)];
+      if (id >= 0) return id;
+      const BasinRoot& root = parts[k].roots[static_cast<std::size_t>(local)];
+      const Element y(root.y);
+      for (std::size_t i = 0; i < root_ys.size() && id < 0; ++i)
+        if (same_root(group, root_ys[i], y)) id = static_cast<int>(i);
+      if (id >= 0) return id;
+      id = static_cast<int>(root_ys.size());
+      root_ys.push_back(y);
+      merged.roots.push_back(root);
+      merged.roots.back().id = id;
+      new_roots.push_back(id);
+      return id;
+    };
+    for (std::size_t r = 0; r < owner.size(); ++r) {
+      const std::size_t k = owner[r];
+      BasinRow row = parts[k].rows[next_row[k]++];
+      row.new_roots.clear();
+      for (std::size_t column = 0; column < merged.grid.axis.size(); ++column)
+        for (auto& pixels : row.pixels)
+          if (pixels[column].status == Status::converged)
+            pixels[column].root = global_root(k, pixels[column].root, row.new_roots);
+      merged.rows.push_back(std::move(row));
+    }
+  });
+  merged.methods = basin_summaries(merged.rows, methods);
+  return merged;
 }
 
 }  // namespace lienewton

@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "shard.hpp"
 #include "solve.hpp"
 #include "status.hpp"
 #include "work_farm.hpp"
@@ -36,6 +37,7 @@ struct BasinRequest {
   // elements.
   std::optional<Eigen::VectorXd> b1{}, b2{};
   int threads = 0;  // 0: all cores
+  std::optional<Shard> shard;  // compute only this part's rows: basin_shard_rows(size, shard)
 };
 
 // One pixel for one method.
@@ -83,8 +85,11 @@ struct BasinResult {
   std::vector<BasinRow> rows; // in row order; a cancelled map holds the rows finished before the stop
   std::vector<BasinRoot> roots;
   std::vector<BasinMethodSummary> methods;
-  bool complete = false;      // every row finished
+  bool complete = false;      // every row finished (of the part, when sharded)
   double seconds = 0;
+  // A sharded map: its part. Its rows, roots and summaries are the part's alone (roots numbered in the part's
+  // pixel order); merge_shards joins the parts.
+  std::optional<Shard> shard;
 };
 
 // Checks the request; throws RequestError naming the field (size beyond kMaxBasinSize, radius, b1/b2 of the
@@ -98,6 +103,20 @@ using BasinRowCallback = std::function<bool(const BasinRow& row, const std::vect
 // rows finished so far (complete = false). farm (optional): the rows are computed by its processes instead of
 // request.threads threads here; a process that only computed rows for it gets an empty result.
 BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row = {}, const WorkFarm* farm = nullptr);
+
+// The rows part `shard` of a size x size map computes: r with r % count == index (all rows without a shard), so
+// the parts' rows interleave and cost about the same.
+std::vector<int> basin_shard_rows(int size, const std::optional<Shard>& shard);
+
+// Per method (in `methods` order) its pixels, converged fraction, basins and mean iterations, summed over rows
+// in row order, then columns.
+std::vector<BasinMethodSummary> basin_summaries(const std::vector<BasinRow>& rows, const std::vector<Method>& methods);
+
+// Joins the results of every shard of one basin map (any order) into the unsharded result: rows in order, roots
+// renumbered in pixel order (a root's y is the one of the part holding its earliest pixel; parts' roots closer
+// than kRootDistance are one), summaries recomputed, seconds summed. Throws RequestError (field "shard") when a
+// part is missing, repeated, unsharded, incomplete, or from another map or sharding.
+BasinResult merge_shards(const std::vector<BasinResult>& parts);
 
 // The map's pixel-centre coordinates -r + r (2 i + 1) / size, i = 0..size-1.
 std::vector<double> basin_axis(int size, double radius);

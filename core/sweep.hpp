@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "shard.hpp"
 #include "solve.hpp"
 #include "work_farm.hpp"
 
@@ -11,13 +12,8 @@ namespace lienewton {
 
 // The base problem and solver options, varied over a grid: every cell is the solve of problem at one n (starting
 // at start_point(n, seed); problem.n and problem.z are not used) by one of methods (solver.method is not used).
-// Part index of count of a grid, for batch schedulers (a Kubernetes Indexed Job, a Slurm array): it takes every
-// count-th cell of the largest-N-first claim order, so the parts cost about the same; `lienewton merge` joins the
-// parts' results into the unsharded one.
-struct Shard {
-  int index = 0;
-  int count = 1;
-};
+// A sweep's shard (shard.hpp) takes every count-th cell of the largest-N-first claim order, so the parts cost
+// about the same.
 
 struct SweepRequest {
   ProblemSpec problem{};

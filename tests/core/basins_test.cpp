@@ -156,22 +156,32 @@ TEST(Basins, EveryRootSolvesTheEquationAndRootsAreDistinct) {
   }
 }
 
-TEST(Basins, SameMapForOneAndTwoThreads) {
-  const BasinResult one = basins(paper_linear_request(4.0, 20, 1));
-  const BasinResult two = basins(paper_linear_request(4.0, 20, 2));
-  ASSERT_EQ(one.rows.size(), two.rows.size());
-  for (std::size_t i = 0; i < one.rows.size(); ++i) {
-    EXPECT_EQ(one.rows[i].new_roots, two.rows[i].new_roots);
-    for (std::size_t m = 0; m < one.rows[i].pixels.size(); ++m)
-      for (std::size_t c = 0; c < one.rows[i].pixels[m].size(); ++c) {
-        const BasinPixel &a = one.rows[i].pixels[m][c], &b = two.rows[i].pixels[m][c];
-        ASSERT_EQ(a.status, b.status);
-        ASSERT_EQ(a.root, b.root);
-        ASSERT_EQ(a.iterations, b.iterations);
+// Two maps are the same pixel for pixel (status, root id, iterations), row for row (new roots) and root for root
+// (y bit for bit).
+void expect_same_map(const BasinResult& expected, const BasinResult& actual) {
+  ASSERT_EQ(actual.rows.size(), expected.rows.size());
+  for (std::size_t i = 0; i < expected.rows.size(); ++i) {
+    EXPECT_EQ(actual.rows[i].row, static_cast<int>(i));
+    EXPECT_EQ(actual.rows[i].new_roots, expected.rows[i].new_roots);
+    ASSERT_EQ(actual.rows[i].pixels.size(), expected.rows[i].pixels.size());
+    for (std::size_t m = 0; m < expected.rows[i].pixels.size(); ++m)
+      for (std::size_t c = 0; c < expected.rows[i].pixels[m].size(); ++c) {
+        const BasinPixel &a = expected.rows[i].pixels[m][c], &b = actual.rows[i].pixels[m][c];
+        ASSERT_EQ(a.status, b.status) << "row " << i << " column " << c << " method " << m;
+        ASSERT_EQ(a.root, b.root) << "row " << i << " column " << c << " method " << m;
+        ASSERT_EQ(a.iterations, b.iterations) << "row " << i << " column " << c << " method " << m;
       }
   }
-  ASSERT_EQ(one.roots.size(), two.roots.size());
-  for (std::size_t k = 0; k < one.roots.size(); ++k) EXPECT_EQ(one.roots[k].y, two.roots[k].y);  // bitwise
+  ASSERT_EQ(actual.roots.size(), expected.roots.size());
+  for (std::size_t k = 0; k < expected.roots.size(); ++k) {
+    EXPECT_EQ(actual.roots[k].id, static_cast<int>(k));
+    EXPECT_EQ(actual.roots[k].y, expected.roots[k].y);  // bitwise
+    EXPECT_EQ(actual.roots[k].residual, expected.roots[k].residual);
+  }
+}
+
+TEST(Basins, SameMapForOneAndTwoThreads) {
+  expect_same_map(basins(paper_linear_request(4.0, 20, 1)), basins(paper_linear_request(4.0, 20, 2)));
 }
 
 // The farm path (MPI ranks in the CLI): rows computed last-first and passed as bytes give the threads' map, roots
@@ -182,23 +192,61 @@ TEST(Basins, FarmGivesTheSameMapAsThreads) {
   const ReversedFarm farm;
   const BasinResult farmed = basins(req, {}, &farm);
   ASSERT_TRUE(farmed.complete);
-  ASSERT_EQ(farmed.rows.size(), threads.rows.size());
-  for (std::size_t i = 0; i < threads.rows.size(); ++i) {
-    EXPECT_EQ(farmed.rows[i].row, static_cast<int>(i));
-    EXPECT_EQ(farmed.rows[i].new_roots, threads.rows[i].new_roots);
-    for (std::size_t m = 0; m < threads.rows[i].pixels.size(); ++m)
-      for (std::size_t c = 0; c < threads.rows[i].pixels[m].size(); ++c) {
-        const BasinPixel &a = threads.rows[i].pixels[m][c], &b = farmed.rows[i].pixels[m][c];
-        ASSERT_EQ(a.status, b.status);
-        ASSERT_EQ(a.root, b.root);
-        ASSERT_EQ(a.iterations, b.iterations);
-      }
-  }
   ASSERT_GE(threads.roots.size(), 2u);
-  ASSERT_EQ(farmed.roots.size(), threads.roots.size());
-  for (std::size_t k = 0; k < threads.roots.size(); ++k) EXPECT_EQ(farmed.roots[k].y, threads.roots[k].y);
+  expect_same_map(threads, farmed);
   const ReversedFarm worker(true);
   EXPECT_TRUE(basins(req, {}, &worker).rows.empty());
+}
+
+// Shards (issue 15): three parts, each holding every third row with its own root numbering, merged in shuffled
+// order give the unsharded map: pixels, renumbered roots, new roots per row, summaries. A part holds exactly its
+// rows; a missing, repeated or foreign part is refused naming `shard`.
+TEST(Basins, ShardsMergeToTheUnshardedMap) {
+  const BasinRequest req = paper_linear_request(4.0, 24, 2);
+  const BasinResult whole = basins(req);
+  ASSERT_GE(whole.roots.size(), 2u);  // several roots
+  std::vector<BasinResult> parts;
+  for (int index : {2, 0, 1}) {
+    BasinRequest part = req;
+    part.shard = Shard{index, 3};
+    parts.push_back(basins(part));
+    ASSERT_TRUE(parts.back().complete);
+    ASSERT_EQ(parts.back().rows.size(), 8u);
+    for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(parts.back().rows[k].row, index + 3 * static_cast<int>(k));
+  }
+  // Some part meets the roots in another order than the whole map: the merge has to renumber.
+  EXPECT_TRUE(std::any_of(parts.begin(), parts.end(), [&](const BasinResult& part) {
+    return !part.roots.empty() && (part.roots[0].y - whole.roots[0].y).norm() > 1e-3;
+  }));
+  const BasinResult merged = merge_shards(parts);
+  EXPECT_TRUE(merged.complete);
+  EXPECT_FALSE(merged.shard);
+  expect_same_map(whole, merged);
+  ASSERT_EQ(merged.methods.size(), whole.methods.size());
+  for (std::size_t m = 0; m < whole.methods.size(); ++m) {
+    EXPECT_EQ(merged.methods[m].method, whole.methods[m].method);
+    EXPECT_EQ(merged.methods[m].converged, whole.methods[m].converged);
+    EXPECT_EQ(merged.methods[m].basins, whole.methods[m].basins);
+    EXPECT_EQ(merged.methods[m].mean_iterations, whole.methods[m].mean_iterations);  // same summation order
+    EXPECT_EQ(merged.methods[m].status_counts, whole.methods[m].status_counts);
+  }
+  EXPECT_EQ(merged.seconds, parts[0].seconds + parts[1].seconds + parts[2].seconds);
+
+  const auto refusal = [](const std::vector<BasinResult>& p) {
+    try {
+      merge_shards(p);
+    } catch (const RequestError& e) {
+      return e.field();
+    }
+    return std::string("merged");
+  };
+  EXPECT_EQ(refusal({parts[0], parts[1]}), "shard");            // missing
+  EXPECT_EQ(refusal({parts[0], parts[1], parts[1]}), "shard");  // repeated
+  EXPECT_EQ(refusal({whole}), "shard");                         // unsharded
+  BasinRequest other = req;
+  other.solve.h = 0.5;
+  other.shard = Shard{1, 3};
+  EXPECT_EQ(refusal({parts[0], basins(other), parts[2]}), "shard");  // foreign
 }
 
 TEST(Basins, StopsWhenTheCallbackSaysSoOrTheTokenIsCancelled) {
@@ -252,6 +300,9 @@ TEST(Basins, ValidationNamesTheField) {
   r = paper_linear_request(0.5, 16, 0);
   r.methods = {Method::newton_group, Method::newton_group};
   EXPECT_EQ(field_of(r), "methods 400");
+  r = paper_linear_request(0.5, 16, 0);
+  r.shard = Shard{3, 3};
+  EXPECT_EQ(field_of(r), "shard.index 400");
 }
 
 TEST(Basins, AxisIsPixelCentres) {
