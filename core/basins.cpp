@@ -97,6 +97,7 @@ BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, cons
     return basin_map(eq, plane, on_row, farm);
   });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.request_key = req.request_key;
   return result;
 }
 
@@ -158,7 +159,8 @@ std::vector<std::size_t> row_owners(const std::vector<BasinResult>& parts) {
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const BasinResult& part = parts[k];
     if (!part.shard) validation::invalid("shard", "a basin map without shard is not part of a sharded map");
-    if (part.shard->count != count || !same_grid(part.grid, first.grid) || methods_of(part) != methods_of(first))
+    if (part.shard->count != count || !same_grid(part.grid, first.grid) || methods_of(part) != methods_of(first) ||
+        part.request_key != first.request_key)
       validation::invalid("shard", "the basin maps come from different maps or shardings");
     const int index = part.shard->index;
     if (index < 0 || index >= count) validation::invalid("shard", "shard index out of range");

@@ -38,6 +38,9 @@ struct BasinRequest {
   std::optional<Eigen::VectorXd> b1{}, b2{};
   int threads = 0;  // 0: all cores
   std::optional<Shard> shard;  // compute only this part's rows: basin_shard_rows(size, shard)
+  // Opaque text that tells one map's requests from another's (the service: the request as read, without shard);
+  // the result carries it, so merge_shards refuses parts of different maps with the same grid.
+  std::string request_key;
 };
 
 // One pixel for one method.
@@ -90,6 +93,7 @@ struct BasinResult {
   // A sharded map: its part. Its rows, roots and summaries are the part's alone (roots numbered in the part's
   // pixel order); merge_shards joins the parts.
   std::optional<Shard> shard;
+  std::string request_key;  // the request's
 };
 
 // Checks the request; throws RequestError naming the field (size beyond kMaxBasinSize, radius, b1/b2 of the

@@ -369,7 +369,7 @@ BasinRequest basin_request_from_json(const json& body, const Limits& limits) {
                                               "methods from every start of its grid)");
   }
   BasinRequest r;
-  const json methods = take("methods"), size = take("size"), radius = take("r");
+  const json methods = take("methods"), size = take("size"), radius = take("r"), shard = take("shard");
   const json b[2] = {take("b1"), take("b2")};
   r.solve = solve_request_from_json(equation, limits);
   if (!methods.is_null()) {
@@ -379,6 +379,12 @@ BasinRequest basin_request_from_json(const json& body, const Limits& limits) {
   }
   // Any integer is read: the core refuses a size beyond its largest map (422), the server's output cap with 413.
   if (!size.is_null()) r.size = read_int(size, "size", 1, INT_MAX);
+  if (!shard.is_null()) {
+    r.shard = read_shard(shard, "shard");
+    json request = body;
+    request.erase("shard");
+    r.request_key = dump(request);
+  }
   if (!radius.is_null()) {
     const std::string message = "r must be a finite number in (0, 100]";
     r.radius = read_number(radius, "r", message);
@@ -449,6 +455,116 @@ SweepResult sweep_result_from_json(const json& body, const Limits& limits) {
   return r;
 }
 
+namespace {
+
+// A number that the writer's finite_or_null may have written as null (NaN then).
+double read_nullable_number(const Fields& f, std::string_view name) {
+  const json* v = f[name];
+  return v ? read_number(*v, f.path(name), f.path(name) + " must be a finite number or null")
+           : std::numeric_limits<double>::quiet_NaN();
+}
+
+const json& required_field(const Fields& f, std::string_view name) {
+  const json* v = f[name];
+  if (!v) fail(f.path(name), f.path(name) + " is required");
+  return *v;
+}
+
+Eigen::VectorXd read_vector(const json& v, const std::string& field) {
+  const auto& arr = read_array(v, field, 1, kMaxBasinSize, "finite numbers");
+  Eigen::VectorXd out(static_cast<Eigen::Index>(arr.size()));
+  for (std::size_t i = 0; i < arr.size(); ++i)
+    out[static_cast<Eigen::Index>(i)] = read_number(arr[i], field, field + " must hold finite numbers");
+  return out;
+}
+
+BasinGrid read_basin_grid(const json& v) {
+  Fields f(v, "basins.grid.", {"a", "b", "r", "b1", "b2", "z"});
+  BasinGrid g;
+  const Eigen::VectorXd axis = read_vector(required_field(f, "a"), f.path("a"));
+  g.axis.assign(axis.data(), axis.data() + axis.size());
+  g.radius = read_number(required_field(f, "r"), f.path("r"), f.path("r") + " must be a finite number");
+  g.b1 = read_vector(required_field(f, "b1"), f.path("b1"));
+  g.b2 = read_vector(required_field(f, "b2"), f.path("b2"));
+  const json& z = required_field(f, "z");
+  g.z = read_matrix(z, f.path("z"), z.is_array() ? static_cast<int>(z.size()) : 0);
+  return g;
+}
+
+BasinRoot read_basin_root(const json& v, const std::string& prefix, int n) {
+  Fields f(v, prefix, {"id", "y", "residual", "distance_from_z", "hg_angle"});
+  BasinRoot root;
+  root.id = read_int(required_field(f, "id"), f.path("id"), 0, INT_MAX);
+  root.y = read_matrix(required_field(f, "y"), f.path("y"), n);
+  root.residual = read_nullable_number(f, "residual");
+  root.distance_from_z = read_nullable_number(f, "distance_from_z");
+  root.hg_angle = read_nullable_number(f, "hg_angle");
+  return root;
+}
+
+// A row of `size` pixels per method; the methods' names are checked against `methods` (the summary's order).
+BasinRow read_basin_row(const json& v, const std::string& prefix, std::size_t size, const std::vector<Method>& methods) {
+  Fields f(v, prefix, {"row", "b", "methods", "new_roots"});
+  BasinRow row;
+  row.row = read_int(required_field(f, "row"), f.path("row"), 0, static_cast<long long>(size) - 1);
+  row.b = read_number(required_field(f, "b"), f.path("b"), f.path("b") + " must be a finite number");
+  const auto& per_method = read_array(required_field(f, "methods"), f.path("methods"), methods.size(), methods.size(),
+                                      "one object per method");
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    Fields pm(per_method[m], f.path("methods[" + std::to_string(m) + "]."), {"method", "status", "root", "iterations"});
+    if (read_enum(required_field(pm, "method"), pm.path("method"), method_from_string, kAllMethods) != methods[m])
+      fail(pm.path("method"), pm.path("method") + " is not the method of the summary at this place");
+    const auto& status = read_array(required_field(pm, "status"), pm.path("status"), size, size, "statuses");
+    const json& root = read_array(required_field(pm, "root"), pm.path("root"), size, size, "root ids or null");
+    const auto& iterations = read_array(required_field(pm, "iterations"), pm.path("iterations"), size, size, "integers");
+    std::vector<BasinPixel> pixels(size);
+    for (std::size_t c = 0; c < size; ++c) {
+      pixels[c].status = read_enum(status[c], pm.path("status"), status_from_string, kAllStatuses);
+      pixels[c].root = root[c].is_null() ? -1 : read_int(root[c], pm.path("root"), 0, INT_MAX);
+      pixels[c].iterations = read_int(iterations[c], pm.path("iterations"), 0, INT_MAX);
+    }
+    row.pixels.push_back(std::move(pixels));
+  }
+  return row;
+}
+
+}  // namespace
+
+BasinResult basin_result_from_json(const json& body) {
+  Fields f(body, "basins.", {"grid", "rows", "roots", "methods", "complete", "seconds", "shard"});
+  BasinResult r;
+  r.grid = read_basin_grid(required_field(f, "grid"));
+  const std::size_t size = r.grid.axis.size();
+  const int n = static_cast<int>(r.grid.z.rows());
+  std::vector<Method> methods;
+  const auto& summaries = read_array(required_field(f, "methods"), "basins.methods", 1, std::size(kAllMethods),
+                                     "method summaries");
+  for (std::size_t m = 0; m < summaries.size(); ++m) {
+    const std::string path = "basins.methods[" + std::to_string(m) + "].method";
+    if (!summaries[m].is_object() || !summaries[m].contains("method")) fail(path, path + " is required");
+    methods.push_back(read_enum(summaries[m]["method"], path, method_from_string, kAllMethods));
+  }
+  r.methods = basin_summaries({}, methods);  // the methods' order; merge_shards recomputes the counts
+  const auto& rows = read_array(required_field(f, "rows"), "basins.rows", 0, size, "row objects");
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    r.rows.push_back(read_basin_row(rows[i], "basins.rows[" + std::to_string(i) + "].", size, methods));
+  const auto& roots = read_array(required_field(f, "roots"), "basins.roots", 0, size * size * methods.size(), "root objects");
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    r.roots.push_back(read_basin_root(roots[i], "basins.roots[" + std::to_string(i) + "].", n));
+    if (r.roots.back().id != static_cast<int>(i)) fail("basins.roots", "basins.roots must be numbered 0, 1, ... in order");
+  }
+  r.complete = read_bool(required_field(f, "complete"), "basins.complete");
+  if (auto v = f["seconds"]) r.seconds = read_number(*v, "basins.seconds", "basins.seconds must be a finite number");
+  if (auto v = f["shard"]) {  // the part's rows are the rows it holds
+    Fields s(*v, "basins.shard.", {"index", "count", "rows", "request"});
+    r.shard = Shard{};
+    r.shard->count = read_int(required_field(s, "count"), s.path("count"), 1, 1000000);
+    r.shard->index = read_int(required_field(s, "index"), s.path("index"), 0, r.shard->count - 1);
+    if (auto q = s["request"]) r.request_key = dump(*q);
+  }
+  return r;
+}
+
 json to_json(const BasinGrid& g) {
   json axis = json::array();
   for (double v : g.axis) axis.push_back(finite_or_null(v));
@@ -505,8 +621,15 @@ json basin_summary_json(const BasinResult& map) {
                            {"mean_iterations", optional_number(s.mean_iterations)},
                            {"statuses", std::move(statuses)}});
   }
-  return json{{"roots", std::move(roots)}, {"methods", std::move(methods)}, {"complete", map.complete},
-              {"seconds", finite_or_null(map.seconds)}};
+  json out{{"roots", std::move(roots)}, {"methods", std::move(methods)}, {"complete", map.complete},
+           {"seconds", finite_or_null(map.seconds)}};
+  if (map.shard) {  // which part this is and which rows of the map it holds
+    json rows = json::array();
+    for (const BasinRow& row : map.rows) rows.push_back(row.row);
+    out["shard"] = json{{"index", map.shard->index}, {"count", map.shard->count}, {"rows", std::move(rows)}};
+    if (!map.request_key.empty()) out["shard"]["request"] = json::parse(map.request_key);
+  }
+  return out;
 }
 
 json to_json(const BasinResult& map, const std::vector<Method>& methods) {

@@ -54,6 +54,10 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
 BasinRequest basin_request_from_json(const json& body, const Limits& limits);
 // A sweep result as produced by to_json(SweepResult), read back (the heatmap accepts one).
 SweepResult sweep_result_from_json(const json& body, const Limits& limits);
+// A basin map as produced by to_json(BasinResult), read back (`lienewton merge` joins shards): grid, rows, roots,
+// the methods' order, complete, seconds, shard. The summaries' counts are not read (basin_summaries recomputes
+// them from the pixels).
+BasinResult basin_result_from_json(const json& body);
 
 json to_json(const TraceRecord& record, bool include_iterates);
 json to_json(const SolveResult& result, bool include_iterates);

@@ -40,8 +40,8 @@ constexpr const char* kUsage =
     "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
     "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
     "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
-    "  merge FILE...    join the outputs of a sweep run in shards (\"shard\": {\"index\": i, \"count\": k}, one\n"
-    "                   FILE each, any order) into the unsharded sweep's output (\"seconds\": summed over the parts)\n"
+    "  merge FILE...    join the outputs of a sweep or basin map run in shards (\"shard\": {\"index\": i, \"count\": k},\n"
+    "                   one FILE each, any order) into the unsharded output (\"seconds\": summed over the parts)\n"
     "  render basins    basin request (plus width/height) -> PNG basin map on stdout\n"
     "  figures [DIFF]   the paper's Figures 5.1 and 5.2 as Markdown tables (no stdin): the default sweep of\n"
     "                   paper-linear and paper-sine, differential DIFF (default finite-difference, as the paper)\n"
@@ -101,16 +101,28 @@ int run(const std::string& command, const std::string& sub, const Part& part) {
   return 0;
 }
 
-// Joins the outputs of `lienewton sweep` run with a shard each (files) into the unsharded output.
+// Joins the outputs of `lienewton sweep` or `lienewton basins` run with a shard each (files) into the unsharded
+// output. A basin map is told from a sweep by its "grid".
 int merge(const std::vector<std::string>& files) {
-  std::vector<SweepResult> parts;
+  std::vector<json> bodies;
   for (const std::string& file : files) {
     std::ifstream in(file);
     if (!in) return fail(2, "usage", "", "cannot read " + file);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    parts.push_back(sweep_result_from_json(parse_body(text), Limits::unlimited()));
+    bodies.push_back(parse_body(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>())));
   }
-  std::cout << dump(to_json(merge_shards(parts))) << "\n";
+  const bool basin_maps = bodies.front().is_object() && bodies.front().contains("grid");
+  if (basin_maps) {
+    std::vector<BasinResult> parts;
+    for (const json& body : bodies) parts.push_back(basin_result_from_json(body));
+    const BasinResult merged = merge_shards(parts);
+    std::vector<Method> methods;
+    for (const BasinMethodSummary& s : merged.methods) methods.push_back(s.method);
+    std::cout << dump(to_json(merged, methods)) << "\n";
+  } else {
+    std::vector<SweepResult> parts;
+    for (const json& body : bodies) parts.push_back(sweep_result_from_json(body, Limits::unlimited()));
+    std::cout << dump(to_json(merge_shards(parts))) << "\n";
+  }
   return 0;
 }
 

@@ -2,6 +2,8 @@
 # Shards (issue 15): a sweep run as 3 shards (in any order, one thread each) and joined by `lienewton merge` prints
 # the unsharded sweep's output byte for byte, apart from the top-level "seconds" (wall time, summed over the parts);
 # every part holds cells, the parts are disjoint; a missing or repeated shard is refused with exit status 2.
+# The same for a basin map run as 3 shards of rows (paper-linear h = 4: two roots, which two of the parts meet in
+# the other order, so the merge renumbers them); a part of another map is refused.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -30,4 +32,26 @@ status=0
 status=0
 "$bin" merge "$dir/part0.json" "$dir/part1.json" "$dir/part1.json" "$dir/part2.json" 2> "$dir/err" > /dev/null || status=$?
 [[ $status -eq 2 ]] && grep -q 'shard 1 is given twice' "$dir/err" || { echo "repeated shard: status $status"; cat "$dir/err"; exit 1; }
-echo "shards merge to the unsharded sweep ($total cells)"
+
+basin='"problem":"paper-linear","n":3,"h":4,"differential":"exact","size":21'
+echo "{$basin}" | "$bin" basins > "$dir/basins.json"
+for i in 0 1 2; do
+  echo "{$basin,\"shard\":{\"index\":$i,\"count\":3}}" | "$bin" basins > "$dir/basins$i.json"
+  grep -q "\"shard\":{\"count\":3,\"index\":$i,\"request\":{[^}]*},\"rows\":\[$i,$((i + 3)),$((i + 6)),$((i + 9)),$((i + 12)),$((i + 15)),$((i + 18))\]}" \
+    "$dir/basins$i.json" || { echo "basin part $i does not say it holds rows $i, $((i + 3)), ..."; exit 1; }
+done
+"$bin" merge "$dir/basins1.json" "$dir/basins2.json" "$dir/basins0.json" > "$dir/basins-merged.json"
+if ! cmp <(without_seconds "$dir/basins.json") <(without_seconds "$dir/basins-merged.json"); then
+  echo "merged basin shards differ from the unsharded basin map"
+  exit 1
+fi
+roots=$(grep -o '"hg_angle":' "$dir/basins.json" | wc -l)
+[[ $roots -eq 2 ]] || { echo "expected two roots, found $roots"; exit 1; }
+echo "{${basin/\"h\":4/\"h\":0.5},\"shard\":{\"index\":2,\"count\":3}}" | "$bin" basins > "$dir/foreign.json"
+status=0
+"$bin" merge "$dir/basins0.json" "$dir/basins1.json" "$dir/foreign.json" 2> "$dir/err" > /dev/null || status=$?
+[[ $status -eq 2 ]] && grep -q '"field":"shard"' "$dir/err" || { echo "foreign basin part: status $status"; cat "$dir/err"; exit 1; }
+status=0
+"$bin" merge "$dir/basins0.json" "$dir/basins2.json" 2> "$dir/err" > /dev/null || status=$?
+[[ $status -eq 2 ]] && grep -q 'shard 1 of 3 is missing' "$dir/err" || { echo "missing basin shard: status $status"; cat "$dir/err"; exit 1; }
+echo "shards merge to the unsharded sweep ($total cells) and basin map (21 x 21)"

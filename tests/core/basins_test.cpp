@@ -245,8 +245,12 @@ TEST(Basins, ShardsMergeToTheUnshardedMap) {
   EXPECT_EQ(refusal({whole}), "shard");                         // unsharded
   BasinRequest other = req;
   other.solve.h = 0.5;
-  other.shard = Shard{1, 3};
-  EXPECT_EQ(refusal({parts[0], basins(other), parts[2]}), "shard");  // foreign
+  other.shard = Shard{0, 3};
+  other.request_key = "h = 0.5";
+  EXPECT_EQ(refusal({parts[0], basins(other), parts[2]}), "shard");  // foreign: another request
+  other.request_key.clear();
+  other.solve.problem.seed = 7;
+  EXPECT_EQ(refusal({parts[0], basins(other), parts[2]}), "shard");  // foreign: another z
 }
 
 TEST(Basins, StopsWhenTheCallbackSaysSoOrTheTokenIsCancelled) {
