@@ -82,7 +82,7 @@ void validate(const BasinRequest& req) {
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
   if (req.shard && !(req.shard->count >= 1)) validation::invalid("shard.count", "shard.count must be at least 1");
   if (req.shard && !(req.shard->index >= 0 && req.shard->index < req.shard->count))
-    validation::invalid("shard.index", "shard.index must be in [0, shard.count)");
+    validation::unprocessable("shard.index", "shard.index must be in [0, shard.count)");
 }
 
 BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {

@@ -131,7 +131,8 @@ Eigen::Vector3d read_vec3(const json& v, const std::string& field, bool positive
   return out;
 }
 
-// {"index": i, "count": k}, 0 <= i < k.
+// {"index": i, "count": k}, 0 <= i < k: a non-negative index beyond the count is well-formed but names no part
+// (422).
 Shard read_shard(const json& v, const std::string& field) {
   Fields f(v, field + ".", {"index", "count"});
   const json* index = f["index"];
@@ -139,7 +140,10 @@ Shard read_shard(const json& v, const std::string& field) {
   if (!index || !count) fail(field, field + " needs index and count");
   Shard s;
   s.count = read_int(*count, f.path("count"), 1, 1000000);
-  s.index = read_int(*index, f.path("index"), 0, s.count - 1);
+  s.index = read_int(*index, f.path("index"), 0, 1000000);
+  if (s.index >= s.count)
+    throw RequestError(RequestError::Kind::unprocessable, f.path("index"),
+                       f.path("index") + " must be less than " + f.path("count") + " (" + std::to_string(s.count) + ")");
   return s;
 }
 

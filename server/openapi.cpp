@@ -174,7 +174,11 @@ json schemas() {
                                                             "beyond --max-output-values numbers: 413)"}}},
                               {"r", json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 100},
                                          {"default", 3.141592653589793}, {"description", "(a, b) in [-r, r]^2"}}},
-                              {"b1", coordinates}, {"b2", coordinates}});
+                              {"b1", coordinates}, {"b2", coordinates},
+                              {"shard", object({{"index", integer("this part, 0 <= index < count")},
+                                                {"count", integer("parts of the map (>= 1): the part computes rows r "
+                                                                  "with r % count == index")}},
+                                               {"index", "count"})}});
   const json pixel_lists = object({{"method", method}, {"status", array_of(status)},
                                    {"root", array_of(json{{"type", "integer"}, {"nullable", true}})},
                                    {"iterations", array_of(json{{"type", "integer"}})}}, {}, false);
@@ -197,7 +201,13 @@ json schemas() {
                                     {"mean_iterations", nullable_number("over converged pixels")},
                                     {"statuses", json{{"type", "object"}, {"additionalProperties", {{"type", "integer"}}}}}},
                                    {}, false))},
-       {"complete", json{{"type", "boolean"}}}, {"seconds", number("wall time")}},
+       {"complete", json{{"type", "boolean"}}}, {"seconds", number("wall time")},
+       {"shard", object({{"index", integer("")}, {"count", integer("")},
+                         {"rows", array_of(integer("a row of the map this part holds"))},
+                         {"request", json{{"type", "object"}, {"description", "the request without shard: "
+                                                                               "lienewton merge refuses parts of "
+                                                                               "different requests"}}}},
+                        {"index", "count", "rows"})}},
       {"grid", "rows", "roots", "methods", "complete", "seconds"}, false);
   s["IntegrateRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"t_end", t_end}, {"integrator", integrator},
                                   {"method", method}, {"differential", differential}, {"tol", tol},

@@ -306,7 +306,7 @@ TEST(Basins, ValidationNamesTheField) {
   EXPECT_EQ(field_of(r), "methods 400");
   r = paper_linear_request(0.5, 16, 0);
   r.shard = Shard{3, 3};
-  EXPECT_EQ(field_of(r), "shard.index 400");
+  EXPECT_EQ(field_of(r), "shard.index 422");
 }
 
 TEST(Basins, AxisIsPixelCentres) {

@@ -72,6 +72,33 @@ TEST_F(BasinRoutes, PlainAnswerHoldsGridRowsRootsAndSummary) {
   EXPECT_GE(map["roots"].size(), 2u);
 }
 
+// A shard (issue 15) answers its rows only (r % count == index, the full map's rows) and says which part it is.
+TEST_F(BasinRoutes, ShardAnswersItsRowsAndSaysWhichPartItIs) {
+  auto c = client();
+  const json whole = json::parse(c.Post("/api/v1/basins", kMap, "application/json")->body);
+  json request = json::parse(kMap);
+  request["shard"] = {{"index", 1}, {"count", 5}};
+  auto res = c.Post("/api/v1/basins", request.dump(), "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const json part = json::parse(res->body);
+  EXPECT_EQ(part["shard"]["index"], 1);
+  EXPECT_EQ(part["shard"]["count"], 5);
+  EXPECT_EQ(part["shard"]["rows"], json::parse("[1, 6, 11]"));
+  EXPECT_EQ(part["shard"]["request"], json::parse(kMap));
+  EXPECT_TRUE(part["complete"]);
+  ASSERT_EQ(part["rows"].size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t row = 1 + 5 * k;
+    EXPECT_EQ(part["rows"][k]["row"], row);
+    for (std::size_t m = 0; m < 3; ++m) {
+      EXPECT_EQ(part["rows"][k]["methods"][m]["status"], whole["rows"][row]["methods"][m]["status"]);
+      EXPECT_EQ(part["rows"][k]["methods"][m]["iterations"], whole["rows"][row]["methods"][m]["iterations"]);
+    }
+  }
+  EXPECT_FALSE(whole.contains("shard"));
+}
+
 TEST_F(BasinRoutes, StreamAnnouncesTheGridThenRowsInOrderThenTheSummary) {
   auto c = client();
   httplib::Headers accept{{"Accept", "application/x-ndjson"}};
@@ -114,6 +141,10 @@ TEST_F(BasinRoutes, CapsAndBadFieldsAreRefusedNamingTheField) {
   refused("/api/v1/basins", R"({"b1":[1,0]})", 400, "b1");
   refused("/api/v1/basins", R"({"b1":[1,0,0],"b2":[2,0,0]})", 422, "b2");
   refused("/api/v1/basins", R"({"method":"newton-group"})", 400, "method");
+  refused("/api/v1/basins", R"({"shard":{"index":3,"count":3}})", 422, "shard.index");
+  refused("/api/v1/basins", R"({"shard":{"index":-1,"count":3}})", 400, "shard.index");
+  refused("/api/v1/basins", R"({"shard":{"index":0}})", 400, "shard");
+  refused("/api/v1/sweep", R"({"shard":{"index":2,"count":2}})", 422, "shard.index");
   refused("/api/v1/solve", R"({"n":3,"y0":[[2,0,0],[0,2,0],[0,0,2]]})", 422, "y0");
   refused("/api/v1/solve", R"({"n":3,"y0":[[1,0],[0,1]]})", 400, "y0");
 }
