@@ -177,7 +177,8 @@ ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
     bool stopped = emit && !emit("grid", to_json(basin_grid(request)));
     int rows = 0;
     const auto throw_with_count = [&] {
-      throw_stopped(token, ": " + std::to_string(rows) + " of " + std::to_string(request.size) + " rows finished");
+      throw_stopped(token, ": " + std::to_string(rows) + " of " +
+                               std::to_string(basin_shard_rows(request.size, request.shard).size()) + " rows finished");
     };
     BasinResult result;
     if (!stopped) {

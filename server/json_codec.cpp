@@ -474,8 +474,8 @@ const json& required_field(const Fields& f, std::string_view name) {
   return *v;
 }
 
-Eigen::VectorXd read_vector(const json& v, const std::string& field) {
-  const auto& arr = read_array(v, field, 1, kMaxBasinSize, "finite numbers");
+Eigen::VectorXd read_vector(const json& v, const std::string& field, std::size_t max_size) {
+  const auto& arr = read_array(v, field, 1, max_size, "finite numbers");
   Eigen::VectorXd out(static_cast<Eigen::Index>(arr.size()));
   for (std::size_t i = 0; i < arr.size(); ++i)
     out[static_cast<Eigen::Index>(i)] = read_number(arr[i], field, field + " must hold finite numbers");
@@ -485,11 +485,12 @@ Eigen::VectorXd read_vector(const json& v, const std::string& field) {
 BasinGrid read_basin_grid(const json& v) {
   Fields f(v, "basins.grid.", {"a", "b", "r", "b1", "b2", "z"});
   BasinGrid g;
-  const Eigen::VectorXd axis = read_vector(required_field(f, "a"), f.path("a"));
+  const Eigen::VectorXd axis = read_vector(required_field(f, "a"), f.path("a"), kMaxBasinSize);
   g.axis.assign(axis.data(), axis.data() + axis.size());
   g.radius = read_number(required_field(f, "r"), f.path("r"), f.path("r") + " must be a finite number");
-  g.b1 = read_vector(required_field(f, "b1"), f.path("b1"));
-  g.b2 = read_vector(required_field(f, "b2"), f.path("b2"));
+  const std::size_t dim = INT_MAX;  // n(n-1)/2 coordinates; merge_shards compares them across parts
+  g.b1 = read_vector(required_field(f, "b1"), f.path("b1"), dim);
+  g.b2 = read_vector(required_field(f, "b2"), f.path("b2"), dim);
   const json& z = required_field(f, "z");
   g.z = read_matrix(z, f.path("z"), z.is_array() ? static_cast<int>(z.size()) : 0);
   return g;
