@@ -10,6 +10,7 @@
 #include "core/solve.hpp"
 #include "core/solvers/continuation.hpp"
 #include "residual_oracle.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {
@@ -54,6 +55,10 @@ struct Cell {
   Method method;
 };
 
+void PrintTo(const Cell& c, std::ostream* os) {
+  *os << to_string(c.problem) << " N = " << c.n << " h = " << c.h << " " << to_string(c.method);
+}
+
 class ContinuedCell : public ::testing::TestWithParam<Cell> {};
 
 // Converged means ||f(y)|| <= tol at the requested h for the returned y, by the oracle (which rounds at ~1e-14 in
@@ -81,22 +86,29 @@ TEST_P(ContinuedCell, ConvergedIsTrueAtTheRequestedH) {
   EXPECT_LE(o.angle, std::numbers::pi + 1e-9);  // a root f of (3.6) sees: h g(y) inside log's branch
 }
 
-// Cells of the paper's grid where the plain Version 1 or 2 fails (measured: max_iterations, off_branch, diverged;
-// exact differential, seed 1) and the continued one converges; and two where both converge.
-const Cell kRescued[] = {{ProblemKind::paper_linear, 3, 32.0, Method::newton_group},
-                         {ProblemKind::paper_linear, 8, 32.0, Method::newton_group},
-                         {ProblemKind::paper_linear, 3, 16.0, Method::newton_algebra},
-                         {ProblemKind::paper_linear, 5, 64.0, Method::newton_algebra}};
+// Cells of the paper's grid where the plain solve fails for a structural reason and the continued one converges
+// (measured, exact differential, seed 1): Version 2 leaves log's branch (off_branch) or blows up (diverged) within
+// 15 iterations. Version 1's rescued cells all fail by wandering for 100 iterations, chaotic enough that a build
+// with other rounding (ASan -O2) converges on some, so they are checked only with continuation.
+const Cell kRescued[] = {{ProblemKind::paper_linear, 3, 16.0, Method::newton_algebra},
+                         {ProblemKind::paper_linear, 8, 64.0, Method::newton_algebra},
+                         {ProblemKind::paper_sine, 4, 1.0, Method::newton_algebra},
+                         {ProblemKind::paper_sine, 6, 0.5, Method::newton_algebra}};
 INSTANTIATE_TEST_SUITE_P(Rescued, ContinuedCell, ::testing::ValuesIn(kRescued));
+INSTANTIATE_TEST_SUITE_P(WanderWithoutIt, ContinuedCell,
+                         ::testing::Values(Cell{ProblemKind::paper_linear, 3, 32.0, Method::newton_group},
+                                           Cell{ProblemKind::paper_linear, 8, 32.0, Method::newton_group}));
 INSTANTIATE_TEST_SUITE_P(BothConverge, ContinuedCell,
                          ::testing::Values(Cell{ProblemKind::paper_linear, 8, 4.0, Method::newton_group},
                                            Cell{ProblemKind::paper_sine, 5, 8.0, Method::newton_group}));
 
-// Without continuation the rescued cells fail.
+// Without continuation the rescued cells fail, and not by running out of iterations.
 TEST(Continuation, RescuedCellsFailWithoutIt) {
   for (const Cell& c : kRescued) {
-    EXPECT_NE(solve(request(c.problem, c.n, c.h, c.method, false)).status, Status::converged)
-        << to_string(c.method) << " N = " << c.n << " h = " << c.h;
+    const SolveResult plain = solve(request(c.problem, c.n, c.h, c.method, false));
+    EXPECT_TRUE(plain.status == Status::diverged || plain.status == Status::off_branch)
+        << to_string(c.method) << " N = " << c.n << " h = " << c.h << ": " << plain.reason;
+    EXPECT_LE(plain.iterations, 15);
   }
 }
 

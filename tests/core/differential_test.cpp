@@ -5,6 +5,7 @@
 #include "core/solve.hpp"
 #include "core/solvers/run_method.hpp"
 #include "core/start_point.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {

@@ -15,6 +15,7 @@
 #include "core/start_point.hpp"
 #include "paper_request.hpp"
 #include "residual_oracle.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {
@@ -24,6 +25,10 @@ struct Case {
   Globalization globalization;
   Differential differential;
 };
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << to_string(c.method) << " " << to_string(c.globalization) << " " << to_string(c.differential);
+}
 
 class GlobalizedNewton : public ::testing::TestWithParam<Case> {};
 

@@ -10,6 +10,7 @@
 #include "core/solve.hpp"
 #include "core/start_point.hpp"
 #include "rn_group.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {

@@ -6,6 +6,7 @@
 
 #include "core/integrate.hpp"
 #include "residual_oracle.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {
@@ -27,6 +28,10 @@ struct Case {
   Integrator integrator;
   double h;
 };
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << to_string(c.problem) << " N = " << c.n << " " << to_string(c.integrator) << " h = " << c.h;
+}
 
 class PredictorSaving : public ::testing::TestWithParam<Case> {};
 

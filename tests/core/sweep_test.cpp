@@ -9,6 +9,7 @@
 #include "core/request_error.hpp"
 #include "core/sweep.hpp"
 #include "reversed_farm.hpp"
+#include "gtest_printers.hpp"
 
 namespace lienewton {
 namespace {
