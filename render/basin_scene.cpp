@@ -56,7 +56,7 @@ std::vector<BasinLegendEntry> legend_entries(const BasinResult& map) {
   for (int k = 0; k < std::min(roots, kMaxRootEntries); ++k) {
     const BasinRoot& root = map.roots[static_cast<std::size_t>(k)];
     std::string text("root ");  // appended: GCC 12 reports a false -Wrestrict on "..." + std::string
-    text.append(std::to_string(k)).append(format(", |log z^-1 y| = %.3g", root.distance_from_z));
+    text.append(std::to_string(k)).append(format(", \u2016log z\u207b\u00b9y\u2016 = %.3g", root.distance_from_z));
     legend.push_back({text, root_color(k)});
   }
   if (roots > kMaxRootEntries)
@@ -66,9 +66,12 @@ std::vector<BasinLegendEntry> legend_entries(const BasinResult& map) {
     if (status == Status::converged) continue;
     const auto index = static_cast<std::size_t>(std::find(std::begin(kAllStatuses), std::end(kAllStatuses), status) -
                                                 std::begin(kAllStatuses));
-    bool occurs = false;
-    for (const BasinMethodSummary& s : map.methods) occurs = occurs || s.status_counts[index] > 0;
-    if (occurs) legend.push_back({std::string(short_name(status)), status_color(status)});
+    long pixels = 0;  // over every method's panel
+    for (const BasinMethodSummary& s : map.methods) pixels += static_cast<long>(s.status_counts[index]);
+    if (pixels > 0) {
+      legend.push_back({std::string(short_name(status)).append(" (").append(std::to_string(pixels)).append(")"),
+                        status_color(status)});
+    }
   }
   return legend;
 }

@@ -2,6 +2,7 @@
 
 #include <stb_truetype.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -14,7 +15,7 @@ namespace {
 
 constexpr float kSmallPixels = 13.0f;
 constexpr float kLargePixels = 15.0f;
-constexpr int kBandHeight = 120;  // each size is baked into its own band of atlas rows
+constexpr int kSolidRows = 4;  // the solid block's rows at the bottom of the atlas, kept out of the packing
 
 std::vector<unsigned char> read_font_file(const char* path) {
   std::ifstream in(path, std::ios::binary);
@@ -24,56 +25,104 @@ std::vector<unsigned char> read_font_file(const char* path) {
   return bytes;
 }
 
+// The length of the UTF-8 sequence a lead byte starts, 0 for a byte that cannot start one.
+int sequence_length(unsigned char lead) {
+  if (lead < 0x80) return 1;
+  if (lead >= 0xC2 && lead < 0xE0) return 2;
+  if (lead >= 0xE0 && lead < 0xF0) return 3;
+  if (lead >= 0xF0 && lead < 0xF5) return 4;
+  return 0;
+}
+
 }  // namespace
+
+std::u32string decode_utf8(std::string_view text) {
+  std::u32string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const int length = sequence_length(lead);
+    bool valid = length > 0 && i + static_cast<std::size_t>(length) <= text.size();
+    char32_t c = length == 1 ? lead : lead & (0x7F >> length);
+    for (int k = 1; valid && k < length; ++k) {
+      const auto next = static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]);
+      valid = (next & 0xC0) == 0x80;
+      c = (c << 6) | (next & 0x3F);
+    }
+    out.push_back(valid ? c : U'\uFFFD');
+    i += valid ? static_cast<std::size_t>(length) : 1;
+  }
+  return out;
+}
 
 const Font& Font::instance() {
   static const Font font;  // a throwing initialiser is retried by the next caller
   return font;
 }
 
-Font::Font() : atlas_(static_cast<std::size_t>(kAtlasWidth) * kAtlasHeight, 0) {
-  const std::vector<unsigned char> ttf = read_font_file(LIENEWTON_FONT_PATH);
+Font::Font() : atlas_(static_cast<std::size_t>(kAtlasWidth) * kAtlasHeight, 0), in_font_(kGlyphCount, true) {
+  std::vector<unsigned char> ttf = read_font_file(LIENEWTON_FONT_PATH);
   stbtt_fontinfo info;
   if (!stbtt_InitFont(&info, ttf.data(), stbtt_GetFontOffsetForIndex(ttf.data(), 0))) {
     throw RenderUnavailable(std::string("cannot parse the label font ") + LIENEWTON_FONT_PATH);
   }
   int cap_x0 = 0, cap_y0 = 0, cap_x1 = 0, cap_y1 = 0;
   stbtt_GetCodepointBox(&info, 'H', &cap_x0, &cap_y0, &cap_x1, &cap_y1);
+  for (std::size_t k = 0; k < std::size(kExtraCodepoints); ++k) {
+    in_font_[kAsciiCount + k] = stbtt_FindGlyphIndex(&info, static_cast<int>(kExtraCodepoints[k])) != 0;
+  }
 
-  auto bake = [&](Face& face, float pixels, int band) {
+  // Both sizes, ASCII and the extra code points, packed into the rows above the solid block; one texel of
+  // padding keeps neighbours from bleeding into a glyph.
+  stbtt_pack_context pack;
+  if (!stbtt_PackBegin(&pack, atlas_.data(), kAtlasWidth, kAtlasHeight - kSolidRows, kAtlasWidth, 1, nullptr)) {
+    throw RenderUnavailable("cannot start packing the label font");
+  }
+  stbtt_PackSetOversampling(&pack, 1, 1);  // texel = pixel: glyphs are drawn on whole pixels, unscaled
+  int extras[std::size(kExtraCodepoints)];
+  std::copy(std::begin(kExtraCodepoints), std::end(kExtraCodepoints), extras);
+  stbtt_packedchar packed[2][kGlyphCount];
+  stbtt_pack_range ranges[4] = {};
+  for (int s = 0; s < 2; ++s) {
+    const float pixels = s == 0 ? kSmallPixels : kLargePixels;
+    ranges[2 * s] = {pixels, kFirstChar, nullptr, kAsciiCount, packed[s], 0, 0};
+    ranges[2 * s + 1] = {pixels, 0, extras, static_cast<int>(std::size(extras)), packed[s] + kAsciiCount, 0, 0};
+  }
+  const int ok = stbtt_PackFontRanges(&pack, ttf.data(), 0, ranges, 4);
+  stbtt_PackEnd(&pack);
+  if (!ok) throw RenderUnavailable("the label font does not fit its atlas");
+
+  auto keep = [&](Face& face, float pixels, const stbtt_packedchar* chars) {
     face.pixel_height = pixels;
     face.cap_height = static_cast<float>(cap_y1) * stbtt_ScaleForPixelHeight(&info, pixels);
-    stbtt_bakedchar baked[kCharCount];
-    unsigned char* band_pixels = atlas_.data() + static_cast<std::size_t>(band) * kBandHeight * kAtlasWidth;
-    const int rows = stbtt_BakeFontBitmap(ttf.data(), 0, pixels, band_pixels, kAtlasWidth, kBandHeight, kFirstChar,
-                                          kCharCount, baked);
-    if (rows <= 0) throw RenderUnavailable("the label font does not fit its atlas");
-    for (int i = 0; i < kCharCount; ++i) {
-      const auto y_shift = static_cast<std::uint16_t>(band * kBandHeight);
-      face.chars[i] = {baked[i].x0, static_cast<std::uint16_t>(baked[i].y0 + y_shift), baked[i].x1,
-                       static_cast<std::uint16_t>(baked[i].y1 + y_shift), baked[i].xoff, baked[i].yoff,
-                       baked[i].xadvance};
+    for (int i = 0; i < kGlyphCount; ++i) {
+      const stbtt_packedchar& c = chars[i];
+      face.chars[i] = {c.x0, c.y0, c.x1, c.y1, c.xoff, c.yoff, c.xadvance};
     }
   };
-  bake(small_, kSmallPixels, 0);
-  bake(large_, kLargePixels, 1);
-  // The solid block sits in the corner below both bands.
-  for (int y = kAtlasHeight - 4; y < kAtlasHeight; ++y) {
+  keep(small_, kSmallPixels, packed[0]);
+  keep(large_, kLargePixels, packed[1]);
+  for (int y = kAtlasHeight - kSolidRows; y < kAtlasHeight; ++y) {
     for (int x = kAtlasWidth - 4; x < kAtlasWidth; ++x) atlas_[static_cast<std::size_t>(y) * kAtlasWidth + x] = 255;
   }
 }
 
-const Font::Baked& Font::glyph(const Face& face, char c) {
-  const int index = static_cast<unsigned char>(c) - kFirstChar;
-  return face.chars[(index >= 0 && index < kCharCount) ? index : '?' - kFirstChar];
+int Font::glyph_index(char32_t c) const {
+  constexpr int kQuestionMark = '?' - kFirstChar;
+  if (c >= kFirstChar && c < kFirstChar + kAsciiCount) return static_cast<int>(c) - kFirstChar;
+  const auto* hit = std::lower_bound(std::begin(kExtraCodepoints), std::end(kExtraCodepoints), c);
+  if (hit == std::end(kExtraCodepoints) || *hit != c) return kQuestionMark;
+  const int index = kAsciiCount + static_cast<int>(hit - std::begin(kExtraCodepoints));
+  return in_font_[static_cast<std::size_t>(index)] ? index : kQuestionMark;
 }
+
+bool Font::has_glyph(char32_t c) const { return c == U'?' || glyph_index(c) != '?' - kFirstChar; }
 
 float Font::pixel_height(TextSize size) const { return face(size).pixel_height; }
 float Font::cap_height(TextSize size) const { return face(size).cap_height; }
 
 float Font::width(std::string_view text, TextSize size) const {
   float w = 0;
-  for (char c : text) w += glyph(face(size), c).xadvance;
+  for (char32_t c : decode_utf8(text)) w += face(size).chars[glyph_index(c)].xadvance;
   return w;
 }
 
@@ -82,8 +131,8 @@ void Font::layout(std::string_view text, TextSize size, float x, float baseline,
   // Glyphs land on whole pixels so that each atlas texel maps to one pixel and stays crisp.
   float pen = std::round(x);
   const float base = std::round(baseline);
-  for (char c : text) {
-    const Baked& g = glyph(f, c);
+  for (char32_t c : decode_utf8(text)) {
+    const Baked& g = f.chars[glyph_index(c)];
     if (g.x1 > g.x0) {
       const float x0 = std::round(pen + g.xoff);
       const float y0 = std::round(base + g.yoff);

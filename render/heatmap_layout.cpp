@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "render/colormap.hpp"
+#include "render/heatmap_scene.hpp"
 #include "render/short_names.hpp"
 
 namespace lienewton::render {
@@ -65,6 +66,11 @@ Point HeatmapLayout::cell_center(int panel, int n_index, int h_index) const {
   return {panel_x(panel) + (h_index + 0.5f) * cell_width, top + (rows - n_index - 0.5f) * cell_height};
 }
 
+std::string with_minus_sign(std::string number) {
+  if (!number.empty() && number.front() == '-') number.replace(0, 1, "\u2212");
+  return number;
+}
+
 std::string log2_label(double h) {
   const double e = std::log2(h);
   char text[32];
@@ -73,11 +79,40 @@ std::string log2_label(double h) {
   } else {
     std::snprintf(text, sizeof text, "%.3g", e);
   }
-  return text;
+  return with_minus_sign(text);
 }
 
 std::string metric_label(HeatmapMetric metric) {
-  return metric == HeatmapMetric::residual ? "log10 residual" : std::string(to_string(metric));
+  return metric == HeatmapMetric::residual ? "log\u2081\u2080 \u2016f\u2016" : std::string(to_string(metric));
+}
+
+std::vector<LegendEntry> legend_entries(const HeatmapGrid& grid, HeatmapMetric metric) {
+  std::size_t by_status[std::size(kAllStatuses)] = {};
+  int missing = 0, no_value = 0, outliers = 0;
+  for (const SweepCell* cell : grid.cells) {
+    if (cell == nullptr) {
+      ++missing;
+      continue;
+    }
+    ++by_status[static_cast<std::size_t>(std::find(std::begin(kAllStatuses), std::end(kAllStatuses), cell->status) -
+                                         std::begin(kAllStatuses))];
+    if (cell->status != Status::converged) continue;
+    no_value += !metric_value(*cell, metric);
+    outliers += metric == HeatmapMetric::rate && rate_outlier(*cell);
+  }
+  std::vector<LegendEntry> legend;
+  auto add = [&](std::string label, long count, Color color) {
+    if (count > 0) legend.push_back({label.append(" (").append(std::to_string(count)).append(")"), color});
+  };
+  for (std::size_t k = 0; k < std::size(kAllStatuses); ++k) {
+    if (kAllStatuses[k] != Status::converged) {
+      add(std::string(short_name(kAllStatuses[k])), static_cast<long>(by_status[k]), status_color(kAllStatuses[k]));
+    }
+  }
+  add("converged, no " + std::string(to_string(metric)), no_value, kNoValueColor);
+  add("dot: rate outside 0\u20133", outliers, kOutlierDotColor);
+  add("blank: not computed", missing, kWhite);
+  return legend;
 }
 
 HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int width, int height) {
@@ -93,13 +128,7 @@ HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int 
   int h_label_width = 0;
   for (double h : grid.h) h_label_width = std::max(h_label_width, text_width(log2_label(h), TextSize::small));
 
-  for (Status status : kAllStatuses) {
-    if (status != Status::converged) l.legend.push_back({std::string(short_name(status)), status_color(status)});
-  }
-  if (metric == HeatmapMetric::rate) {
-    l.legend.push_back({"no rate", kNoValueColor});
-    l.legend.push_back({"dot: rate outside 0..3", kOutlierDotColor});
-  }
+  l.legend = legend_entries(grid, metric);
   int legend_label_width = 0;
   for (const LegendEntry& entry : l.legend) {
     legend_label_width = std::max(legend_label_width, text_width(entry.label, TextSize::small));
@@ -110,7 +139,7 @@ HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int 
   // Horizontal: [N title][N labels][tick][panels with gaps][gap][colorbar][tick labels or title]
   l.left = kMargin + text_width("N", TextSize::small) + 8 + n_label_width + kTick + 3;
   l.panel_gap = kPanelGap;
-  const int colorbar_text = std::max(text_width("-00.0", TextSize::small) + kTick + 4,
+  const int colorbar_text = std::max(text_width("\u221200.0", TextSize::small) + kTick + 4,
                                      text_width(metric_label(metric), TextSize::small) - kColorbarWidth);
   const int right = kColorbarGap + kColorbarWidth + colorbar_text + kMargin;
   l.colorbar_width = kColorbarWidth;

@@ -50,7 +50,12 @@ struct HeatmapLayout {
 // width or height 0 chooses it from the grid (within [64, 4096]); cells shrink to fit a given size.
 HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int width, int height);
 
-std::string log2_label(double h);
+// A number's leading '-' as the minus sign U+2212, as typeset.
+std::string with_minus_sign(std::string number);
+std::string log2_label(double h);  // "−3" for h = 1/8
+// The colours the map shows beyond the colorbar, each with its number of cells: failure classes, converged
+// cells without a metric value, rate outliers (a dot) and cells the sweep does not hold. Only those present.
+std::vector<LegendEntry> legend_entries(const HeatmapGrid& grid, HeatmapMetric metric);
 std::string metric_label(HeatmapMetric metric);
 
 }  // namespace lienewton::render

@@ -34,7 +34,7 @@ std::vector<double> nice_ticks(double lo, double hi, int max_ticks, bool integer
 std::string tick_label(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
+  return with_minus_sign(text);
 }
 
 void draw_colorbar(Canvas& canvas, const HeatmapLayout& l, HeatmapMetric metric, const MetricScale& scale) {
@@ -71,7 +71,7 @@ void draw_panel_axes(Canvas& canvas, const HeatmapGrid& grid, const HeatmapLayou
     canvas.text(log2_label(grid.h[j]), x, y1 + kTick + 4 + 0.5f * small, TextSize::small, kTextColor,
                 Align::center);
   }
-  canvas.text("log2 h", 0.5f * (x0 + x1), y1 + kTick + 10 + 1.5f * small, TextSize::small, kTextColor,
+  canvas.text("log\u2082 h", 0.5f * (x0 + x1), y1 + kTick + 10 + 1.5f * small, TextSize::small, kTextColor,
               Align::center);
   if (panel != 0) return;  // the panels share the N axis
   for (int i = 0; i < l.rows; i += l.n_label_step) {

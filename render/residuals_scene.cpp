@@ -36,7 +36,7 @@ std::string legend_label(const ResidualRun& run) {
 Figure residuals_scene(const std::vector<ResidualRun>& runs, const std::string& title, int width, int height) {
   validate_size("width", width, false);
   validate_size("height", height, false);
-  const ChartAxis residual_axis{.label = "||f(y_n)||", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
+  const ChartAxis residual_axis{.label = "\u2016f(y\u2099)\u2016", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
   LineChart by_time{.title = title, .x = {.label = "solver CPU time", .scale = AxisScale::log, .unit = AxisUnit::seconds, .min_step = 0},
                     .y = residual_axis, .series = {}, .legend_title = {}, .legend = LegendPlace::none};
   LineChart by_iteration{.title = "the same against the iteration",

@@ -35,7 +35,7 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
   validate_size("height", height, false);
   LineChart chart;
   chart.title = title;
-  chart.x = {.label = "global error ||y_N - y(t_end)||", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
+  chart.x = {.label = "global error \u2016y_N \u2212 y(t_end)\u2016", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
   chart.y = {.label = "solver CPU time", .scale = AxisScale::log, .unit = AxisUnit::seconds, .min_step = 0};
   chart.legend = LegendPlace::right;
   chart.legend_title = "markers: h, largest first; p: fitted order";
