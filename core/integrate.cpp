@@ -74,6 +74,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   if (frame_every) {
     res.frames.push_back(y);
     res.frame_times.push_back(0.0);
+    res.frame_steps.push_back(0);
   }
   res.steps.reserve(static_cast<std::size_t>(steps));
   for (int k = 1; k <= steps; ++k) {
@@ -107,6 +108,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
     if (frame_every && (k % frame_every == 0 || k == steps)) {
       res.frames.push_back(y);
       res.frame_times.push_back(k * h);
+      res.frame_steps.push_back(k);
     }
     const bool keep_going = !on_step || on_step(rec);
     if (rec.status != Status::converged) {

@@ -48,6 +48,8 @@ struct IntegrateResult {
   Eigen::MatrixXd y;                   // final state
   std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))
   std::vector<double> frame_times;
+  std::vector<int> frame_steps;        // the step k of each frame (0 for y(0)): every max(1, floor(S / frames))-th
+                                       // of the S steps and the last one taken
   double cpu_seconds = 0;              // CPU time of the stepping (excluding the reference)
   double reference_seconds = 0;
 };

@@ -758,6 +758,7 @@ json to_json(const IntegrateResult& r) {
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},
               {"frame_times", std::move(times)},
+              {"frame_steps", r.frame_steps},
               {"cpu_seconds", finite_or_null(r.cpu_seconds)},
               {"reference_seconds", finite_or_null(r.reference_seconds)}};
 }

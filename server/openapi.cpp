@@ -227,6 +227,9 @@ json schemas() {
                                  {"mean_iterations", nullable_number("total_iterations per step")},
                                  {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
+                                 {"frame_steps", json{{"type", "array"}, {"items", integer("")},
+                                                      {"description", "the step k of each frame (0: y(0)); the frames "
+                                                                      "of render/frames with the same request"}}},
                                  {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
                                 {}, false);
   const json choice = object({{"integrator", integrator}, {"method", method}, {"differential", differential}});

@@ -294,7 +294,7 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
       runs.push_back(std::move(run));
     }
   }
-  const std::string title = "||f(y_n)|| against solver CPU time: " + std::string(to_string(base.problem.kind)) + " on " +
+  const std::string title = "\u2016f(y\u2099)\u2016 against solver CPU time: " + std::string(to_string(base.problem.kind)) + " on " +
                             group_name(base.problem.n) + ", h = " + number_text(base.h);
   return draw_figure(renderer, [&] { return render::residuals_scene(runs, title, width, height); });
 }

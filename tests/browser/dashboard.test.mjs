@@ -158,9 +158,35 @@ test('a solve streams its trace; the chart ends with iterations + 1 points', asy
     await page.locator(`#solve-frames[data-step="${k}"]`).waitFor();
     assert.match(await text('#solve-frames-readout'), new RegExp(`^n = ${k}: .* = ${iterates[k].residual.toExponential(3).replace('+', '\\+')}$`));
     await page.waitForFunction(() => document.querySelector('#solve-frames-img').complete);
-    await sameImage('#solve-frames-img', '/api/v1/render/frames', { ...JSON.parse(request.postData()), width: 512, height: 512, upto: k });
+    await sameImage('#solve-frames-img', '/api/v1/render/frames', { ...JSON.parse(request.postData()), ...await framesSize('#solve-frames-img'), upto: k });
   }
 });
+
+// Server PNGs are requested at the width they are shown at: count of them, each pixel for pixel, filling the panel.
+async function pngsShownUnscaled(where, selector, count) {
+  await where.waitForFunction(([sel, n]) => [...document.querySelectorAll(sel)].filter((i) => i.naturalWidth > 0).length === n,
+    [selector, count]);
+  const sizes = await where.evaluate((sel) => [...document.querySelectorAll(sel)].map((img) =>
+    [img.naturalWidth, img.clientWidth, img.naturalHeight, img.clientHeight, img.closest('.output').clientWidth]), selector);
+  assert.equal(sizes.length, count);
+  for (const [nw, cw, nh, ch, room] of sizes) {
+    assert.deepEqual([cw, ch], [nw, nh], `${selector}: a ${nw}x${nh} PNG shown at ${cw}x${ch}`);
+    assert.ok(nw > room - 40 && nw <= room, `${selector}: ${nw} wide in a panel of ${room}`);
+  }
+}
+
+// The size a frames <img> was drawn at: its figure's width, at most 512, and shown at that size (not scaled).
+async function framesSize(selector) {
+  const [width, height, shown, room] = await page.evaluate((sel) => {
+    const img = document.querySelector(sel);
+    const q = new URL(img.src).searchParams;
+    return [Number(q.get('width')), Number(q.get('height')), img.getBoundingClientRect().width, img.closest('figure').clientWidth];
+  }, selector);
+  assert.equal(width, height);
+  assert.equal(width, Math.min(512, room - 2), `${selector} drawn ${width} wide in a figure of ${room}`);
+  assert.ok(Math.abs(shown - 2 - width) < 1, `${selector} drawn ${width} wide but shown ${shown}`);
+  return { width, height };
+}
 
 // The <img> shows exactly the PNG the API draws for body (POST), byte for byte.
 async function sameImage(selector, path, body) {
@@ -231,10 +257,11 @@ test('compare draws one residual curve per ticked method', async () => {
   await tab('Compare');
   const panel = page.locator('#compare');
   const ticked = await panel.locator('input[name="runs"]:checked').count();
+  const clicked = Date.now();  // before the click: the N = 3 runs may be done before click() returns
   await panel.getByRole('button', { name: 'Run' }).click();
-  const clicked = Date.now();
   await panel.locator('#compare-table tbody tr').nth(ticked - 1).waitFor();
-  console.log(`compare defaults: ${Date.now() - clicked} ms from click to complete`);
+  const wall = (Date.now() - clicked) / 1e3;
+  console.log(`compare defaults: ${(wall * 1e3).toFixed(0)} ms wall time from click to complete (page and browser included)`);
   assert.equal(await page.locator('#compare-chart').getAttribute('data-series'), String(ticked));
   // Speed vs accuracy of the solvers: one line per run, x = the trace's cpu_seconds, and the time to tol.
   assert.equal(await page.locator('#compare-time-chart').getAttribute('data-series'), String(ticked));
@@ -242,6 +269,26 @@ test('compare draws one residual curve per ticked method', async () => {
   const ttol = await panel.locator('#compare-table td[data-col="time-to-tol"]').allInnerTexts();
   assert.equal(ttol.length, ticked);
   for (const t of ttol) assert.match(t, /^(\d+(\.\d+)? (\u00b5s|ms|s)|not reached)$/);
+  // The times shown are the solver's own CPU seconds (result cpu_seconds), labelled so: each run's time to tol
+  // is the x of its first point at or below tol in the time chart and at most its total; the totals of the
+  // runs, done one after the other, fit in the wall time from click to complete.
+  const heads = await panel.locator('#compare-table thead th').allInnerTexts();
+  assert.deepEqual(heads.slice(-2), ['Time to tol (CPU)', 'Solver CPU time']);
+  const unit = (t) => ({ '\u00b5s': 1e-6, ms: 1e-3, s: 1 })[t.split(' ')[1]];
+  const seconds = (t) => Number(t.split(' ')[0]) * unit(t);
+  const rounding = (t) => 0.5 * 10 ** -(t.split(' ')[0].split('.')[1] ?? '').length * unit(t);  // half the last digit
+  const totals = await panel.locator('#compare-table tbody tr td:last-child').allInnerTexts();
+  const total = totals.map(seconds);
+  const { tables } = await page.evaluate(() => window.__lienewtonCharts['compare-time-chart']);
+  const tolX = tables.map(([xs, ys]) => xs[ys.findIndex((y) => y <= 1e-13)]);
+  ttol.forEach((t, i) => {
+    assert.ok(total[i] > 0, `run ${i}: solver CPU time ${total[i]}`);
+    assert.ok(total[i] + rounding(totals[i]) >= tables[i][0].at(-1), `run ${i}: total ${totals[i]} before its last iterate`);
+    if (t === 'not reached') return;
+    assert.ok(seconds(t) <= total[i] + rounding(t) + rounding(totals[i]), `run ${i}: time to tol ${t} after the total ${totals[i]}`);
+    assert.ok(Math.abs(seconds(t) - tolX[i]) <= rounding(t) * 1.0001, `run ${i}: ${t} vs the chart's ${tolX[i]} s`);
+  });
+  assert.ok(total.reduce((a, b) => a + b, 0) < wall, `solver CPU ${total} s in ${wall} s of wall time`);
   // N = 3: every run's iterates as frames; pick the last run, step to an iterate, see the API's picture and residual.
   assert.equal(await panel.locator('#compare-frames-run option').count(), ticked);
   await panel.locator('#compare-frames-run').selectOption({ index: ticked - 1 });
@@ -254,7 +301,7 @@ test('compare draws one residual curve per ticked method', async () => {
   await page.locator('#compare-frames[data-step="2"]').waitFor();
   assert.equal(await text('#compare-frames-readout'), `n = 2: \u2016f(y\u2082)\u2016 = ${trace[2].residual.toExponential(3)}`);
   await page.waitForFunction(() => document.querySelector('#compare-frames-img').complete);
-  await sameImage('#compare-frames-img', '/api/v1/render/frames', { ...run, width: 512, height: 512, upto: 2 });
+  await sameImage('#compare-frames-img', '/api/v1/render/frames', { ...run, ...await framesSize('#compare-frames-img'), upto: 2 });
   await shot('compare');
 });
 
@@ -290,6 +337,7 @@ test('a sweep renders the heatmap and hovering a cell shows that cell', async ()
   await panel.getByRole('button', { name: 'Run' }).click();
   const request = JSON.parse((await sent).postData());
   await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
+  await pngsShownUnscaled(page, '#stability .heatmap img', 1);
   const { body: sweep } = await api('/api/v1/sweep', request);
   assert.equal(sweep.cells.length, 2 * 4 * 7);
   assert.equal(await panel.locator('.cell:not(.pending)').count(), sweep.cells.length);
@@ -394,8 +442,10 @@ test('the work-precision chart has one series per ticked choice', async () => {
   const energyRequest = { problem: 'rigid-body', n: 3, t_end: 1, tol: 1e-13, max_iterations: 100, seed: 1, h: 0.125 };
   await panel.locator('#trajectory-frames-run').selectOption({ index: 1 });
   const choice = wp.series[1].choice;
-  const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice })).body;
-  assert.equal(await page.locator('#trajectory-frames-slider').getAttribute('max'), String(run.steps.length));
+  const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice, frames: 1000 })).body;
+  // The slider steps through the frames the server reports (frame_steps): here every one of the 8 steps.
+  assert.deepEqual(run.frame_steps, [0, 1, 2, 3, 4, 5, 6, 7, 8]);
+  assert.equal(await page.locator('#trajectory-frames-slider').getAttribute('max'), String(run.frame_steps.length - 1));
   for (const k of [3, 0, run.steps.length]) {
     await page.locator('#trajectory-frames-slider').fill(String(k));
     await page.locator(`#trajectory-frames[data-step="${k}"]`).waitFor();
@@ -404,7 +454,7 @@ test('the work-precision chart has one series per ticked choice', async () => {
       `step ${k}, t = ${k * 0.125}: E \u2212 E(0) = ${(energy - run.initial_energy) === 0 ? '0' : (energy - run.initial_energy).toExponential(3)}`);
     await page.waitForFunction(() => document.querySelector('#trajectory-frames-img').complete);
     await sameImage('#trajectory-frames-img', '/api/v1/render/frames',
-      { ...energyRequest, ...choice, kind: 'integrate', frames: run.steps.length, width: 512, height: 512, upto: k });
+      { ...energyRequest, ...choice, kind: 'integrate', frames: 1000, ...await framesSize('#trajectory-frames-img'), upto: k });
   }
   await shot('speed');
 });
@@ -418,6 +468,7 @@ test('a basin map streams in, matches the API pixel by pixel, and a pixel opens 
   await panel.getByRole('button', { name: 'Run' }).click();
   const request = JSON.parse((await sent).postData());
   await page.waitForFunction(() => document.querySelector('#basin-img')?.naturalWidth > 0);
+  await pngsShownUnscaled(page, '#basin-img', 1);
   const { status, body: map } = await api('/api/v1/basins', request);
   assert.equal(status, 200);
   assert.equal(map.rows.length, 24);
@@ -513,6 +564,9 @@ test('on a touch phone a first tap shows a cell, a second tap opens it', async (
   }
   await panel.getByRole('button', { name: 'Run' }).tap();
   await phone.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
+  // Too narrow for the methods side by side: one heatmap per method, each as wide as the panel.
+  const methods = await panel.locator('input[name="methods"]:checked').count();
+  await pngsShownUnscaled(phone, '#stability .heatmap img', methods);
   const cell = panel.locator('.cell[data-method="newton-group"][data-n="3"][data-h="2"]');
   await cell.tap();
   assert.equal(await phone.locator('#cell-details [data-detail="n"]').innerText(), '3');

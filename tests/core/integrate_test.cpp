@@ -74,6 +74,11 @@ TEST(Integrators, FramesAndStepRecords) {
   EXPECT_EQ(r.frame_times.front(), 0.0);
   EXPECT_DOUBLE_EQ(r.frame_times.back(), 1.0);
   EXPECT_TRUE(r.frames.back().isApprox(r.y, 0.0));
+  EXPECT_EQ(r.frame_steps, (std::vector<int>{0, 5, 10, 15, 20}));  // 20 steps, every 20 / 4 = 5th
+  for (std::size_t i = 0; i < r.frames.size(); ++i) EXPECT_DOUBLE_EQ(r.frame_times[i], r.frame_steps[i] * req.h);
+  req.h = 0.1;  // 10 steps, frames = 3: every floor(10 / 3) = 3rd step and the last
+  req.frames = 3;
+  EXPECT_EQ(integrate(req).frame_steps, (std::vector<int>{0, 3, 6, 9, 10}));
   for (const auto& s : r.steps) {
     EXPECT_GE(s.iterations, 1);
     EXPECT_LE(s.residual, req.solver.tol);

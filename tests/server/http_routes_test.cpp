@@ -116,9 +116,10 @@ TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
   const json i = json::parse(integ->body);
   EXPECT_EQ(i["steps"].size(), 5u);
   for (const char* field : {"status", "reason", "steps", "global_error", "energy_drift", "orthogonality_error", "y", "frames",
-                            "frame_times", "cpu_seconds", "reference_seconds"}) {
+                            "frame_times", "frame_steps", "cpu_seconds", "reference_seconds"}) {
     EXPECT_TRUE(i.contains(field)) << field;
   }
+  EXPECT_EQ(i["frame_steps"], json::parse("[0, 1, 2, 3, 4, 5]"));  // 5 steps, frames 3: every floor(5 / 3) = 1st
   auto wp = c.Post("/api/v1/work-precision",
                    R"({"problem":"rigid-body","t_end":0.5,"h":[0.1,0.05],"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"},{"integrator":"dirk-cg2","method":"newton-group","differential":"exact"}]})",
                    "application/json");

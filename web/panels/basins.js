@@ -5,6 +5,7 @@
 import { postImage, stream } from '../shared/api.js';
 import { catalog } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
+import { imageWidth } from '../shared/image_width.js';
 import { actions, checkboxes, number, select } from '../shared/fields.js';
 import { checkedValues, runner, value } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, STATUSES, fmtExp, label } from '../shared/labels.js';
@@ -34,7 +35,8 @@ export function createBasinsPanel(root, { openSolve }) {
   const image = el('figure', { class: 'heatmap', hidden: true },
     el('img', { id: 'basin-img', alt: 'Server-rendered basin map, one panel per method' }),
     el('figcaption', {}, 'Server-rendered basin map (PNG): a to the right, b upward, one panel per method.'));
-  root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image));
+  const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image);
+  root.append(form, output);
 
   const start = runner(form, live);
   let last = null; // { request, rows, roots, result, panels }
@@ -151,7 +153,8 @@ export function createBasinsPanel(root, { openSolve }) {
 
   async function renderImage(signal) {
     const q = last.request;
-    const url = await postImage('/api/v1/render/basins', { ...q, width: 0, height: 0 }, { signal });
+    // As wide as the panel (the map is computed again on the server, so a resize does not redraw it).
+    const url = await postImage('/api/v1/render/basins', { ...q, width: imageWidth(output), height: 0 }, { signal });
     if (imageUrl) URL.revokeObjectURL(imageUrl);
     imageUrl = url;
     image.querySelector('img').src = url;

@@ -10,6 +10,10 @@ import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { statusBadge } from '../shared/summary.js';
 
+// Frames of the trajectory: every step up to the API's cap of 1000, then evenly spaced (the server says which
+// steps in frame_steps).
+const FRAMES = 1000;
+
 const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixed-point|exact',
   'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
 
@@ -86,44 +90,33 @@ export function createSpeedPanel(root) {
       const runs = [];
       for (const [i, choice] of choices.entries()) {
         live.textContent = `Integrating ${choiceLabel(choice)} (${i + 1} of ${choices.length})\u2026`;
-        const request = { ...common, ...choice, h: value(form, 'energy_h') };
+        const request = { ...common, ...choice, h: value(form, 'energy_h'), frames: FRAMES };
         const result = await postJSON('/api/v1/integrate', request, { signal }).catch((err) => {
           if (err.field === 'h') err.field = 'energy_h';
           throw err;
         });
-        runs.push({ choice, result });
+        runs.push({ choice, request, result });
         progress.value = i + 1;
       }
       drawEnergy(energyBox, runs);
       energyFig.hidden = false;
       tableBox.replaceChildren(integrateTable(runs));
-      trajectory.show(runs.map(({ choice, result }) => trajectoryRun(choiceLabel(choice), result,
-        { ...common, ...choice, h: value(form, 'energy_h'), kind: 'integrate' })));
+      trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
+        { ...request, kind: 'integrate' })));
       live.textContent = `Done: work precision in ${fmtSeconds(wp.seconds)}, ${runs.length} energy runs.`;
     });
   });
 }
 
-// The integrate route returns a frame every max(1, floor(S / frames)) of the S = round(t_end / h) steps, and the
-// last (core/integrate.cpp); asking for frames = min(S, 1000) makes that every step up to 1000 steps.
-const MAX_FRAMES = 1000;
-function frameSteps(request, done) {
-  const planned = Math.round(request.t_end / request.h);
-  const frames = Math.max(1, Math.min(planned, MAX_FRAMES));
-  const every = Math.max(1, Math.floor(planned / frames));
-  const steps = [0];
-  for (let k = 1; k <= done; k += 1) if (k % every === 0 || k === planned) steps.push(k);
-  return { frames, steps };
-}
-
-// One run for the trajectory's stepper: the render request (one frame per step up to 1000) and per slider
-// position its step, time and energy error.
+// One run for the trajectory's stepper: the render request (the same frames as the integration, which ran with
+// FRAMES) and per slider position the step and time the server reports for that frame (frame_steps,
+// frame_times) and its energy error.
 function trajectoryRun(label, result, request) {
-  const { frames, steps } = frameSteps(request, result.steps.length);
-  return { label, request: { ...request, frames }, count: steps.length, describe(i) {
+  const steps = result.frame_steps;
+  return { label, request, count: steps.length, describe(i) {
     const k = steps[i];
     const energy = k ? result.steps[k - 1].energy : result.initial_energy;
-    return `step ${k}, t = ${Number((k * request.h).toPrecision(6))}: E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
+    return `step ${k}, t = ${Number(result.frame_times[i].toPrecision(6))}: E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
   } };
 }
 

@@ -3,6 +3,7 @@
 // opens that solve in the Solve panel.
 import { ApiError, postImage, stream } from '../shared/api.js';
 import { el } from '../shared/dom.js';
+import { imageWidth, onWidthChange } from '../shared/image_width.js';
 import { actions, checkboxes, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label, mathText } from '../shared/labels.js';
@@ -11,6 +12,8 @@ import { createGrid } from './grid.js';
 import { statusBadge } from '../shared/summary.js';
 
 const METHOD_ORDER = METHODS.map(([m]) => m);
+// Narrower than this per method, the heatmap's cells and tick labels get too small: one PNG per method instead.
+const MIN_PANEL = 300;
 
 export function createStabilityPanel(root, { openSolve }) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Sweep request' },
@@ -32,14 +35,15 @@ export function createStabilityPanel(root, { openSolve }) {
   const figures = el('section', { class: 'figure-tables', id: 'figure-tables' });
   const details = el('aside', { class: 'cell-details', id: 'cell-details', 'aria-live': 'polite' },
     el('p', { class: 'hint' }, 'Hover or focus a cell to see its numbers.'));
-  const image = el('figure', { class: 'heatmap', hidden: true },
-    el('img', { id: 'heatmap-img', alt: 'Server-rendered heatmap of the sweep, one panel per method' }),
+  const pictures = el('div', { class: 'heatmap-images' });
+  const image = el('figure', { class: 'heatmap', hidden: true }, pictures,
     el('figcaption', {}, 'Server-rendered heatmap (PNG): x = log\u2082 h, y = N, one panel per method.'));
-  root.append(form, el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, figures, image));
+  const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, figures, image);
+  root.append(form, output);
 
   const start = runner(form, live);
   let last = null; // { request, cells, grids }
-  let imageUrl = null;
+  let imageUrls = [];
 
   function paint() {
     const metric = value(form, 'metric');
@@ -50,15 +54,31 @@ export function createStabilityPanel(root, { openSolve }) {
     drawFigureTables(figures, r, last.cells);
   }
 
-  async function renderImage(signal) {
-    const body = { sweep: { cells: last.cells, seconds: last.seconds }, metric: value(form, 'metric'),
-      width: 360 * last.request.methods.length, height: 400 };
-    const url = await postImage('/api/v1/render/heatmap', body, { signal });
-    if (imageUrl) URL.revokeObjectURL(imageUrl);
-    imageUrl = url;
-    image.querySelector('img').src = url;
+  // One PNG as wide as the panel; where that leaves a method's panel under MIN_PANEL pixels (a phone), one PNG
+  // per method, stacked, each the panel's width.
+  async function renderImage(signal, width = imageWidth(output)) {
+    const methods = last.request.methods;
+    const split = methods.length > 1 && width / methods.length < MIN_PANEL;
+    const parts = split ? methods.map((m) => [m]) : [methods];
+    const urls = await Promise.all(parts.map((group) => postImage('/api/v1/render/heatmap', {
+      sweep: { cells: last.cells.filter((c) => group.includes(c.method)), seconds: last.seconds },
+      metric: value(form, 'metric'), width }, { signal })));
+    for (const url of imageUrls) URL.revokeObjectURL(url);
+    imageUrls = urls;
+    drawnWidth = width;
+    pictures.replaceChildren(...urls.map((src, i) => el('img', { id: i ? `heatmap-img-${i + 1}` : 'heatmap-img', src,
+      alt: `Server-rendered heatmap of the sweep: ${parts[i].map((m) => label(METHODS, m)).join(', ')}` })));
     image.hidden = false;
   }
+  // A finished map is drawn again at the new width (a new run hides the picture until it has its own).
+  let resized = null;
+  let drawnWidth = 0;
+  onWidthChange(output, (width) => {
+    if (!last?.cells.length || image.hidden || width === drawnWidth) return;
+    resized?.abort();
+    resized = new AbortController();
+    renderImage(resized.signal, width).catch(() => { /* the picture at the old width stays */ });
+  });
 
   function show(cell) {
     const row = (key, term, v) => [el('dt', {}, term), el('dd', { dataset: { detail: key } }, v)];
@@ -79,6 +99,7 @@ export function createStabilityPanel(root, { openSolve }) {
 
   form.addEventListener('submit', async (e) => {
     e.preventDefault();
+    resized?.abort();
     await start(async (signal, progress) => {
       const request = { problem: value(form, 'problem'), methods: checkedValues(form, 'methods'),
         differential: value(form, 'differential'), n: wholeRange(form, 'n_lo', 'n_hi', 'N'),

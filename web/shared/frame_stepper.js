@@ -4,13 +4,15 @@
 // the picture needs. Images are GETs, so a step already seen comes from the browser cache (ETag, 304).
 import { el } from './dom.js';
 import { fillSelect } from './form.js';
+import { imageWidth, onWidthChange } from './image_width.js';
 
-const SIZE = 512;
+// Square pictures as wide as their figure, at most MAX_SIZE pixels.
+const MAX_SIZE = 512;
 
 // A GET query of a JSON request: arrays and objects as JSON text, which the server's query reader parses.
-export function framesUrl(request, upto) {
+export function framesUrl(request, upto, size) {
   const query = new URLSearchParams();
-  for (const [key, v] of Object.entries({ ...request, width: SIZE, height: SIZE, upto })) {
+  for (const [key, v] of Object.entries({ ...request, width: size, height: size, upto })) {
     if (v === undefined || v === null || v === '') continue;
     query.set(key, typeof v === 'object' ? JSON.stringify(v) : String(v));
   }
@@ -20,13 +22,14 @@ export function framesUrl(request, upto) {
 // id names the figure; the image is `${id}-img`, the slider `${id}-slider`, the readout `${id}-readout`.
 // sliderLabel names what a step is ("Iterate n", "Time step").
 export function frameStepper(id, sliderLabel, caption) {
-  const img = el('img', { id: `${id}-img`, width: SIZE, height: SIZE, alt: '' });
+  const img = el('img', { id: `${id}-img`, alt: '' });
   const slider = el('input', { type: 'range', id: `${id}-slider`, min: 0, max: 0, step: 1, value: 0 });
   const readout = el('output', { id: `${id}-readout`, for: slider.id, class: 'frame-readout' });
   const note = el('figcaption', {}, caption);
   const figure = el('figure', { class: 'frames', id, hidden: true },
     el('div', { class: 'frame-slider' }, el('label', { for: slider.id }, sliderLabel), slider), readout, img, note);
   let run = null; // { request, describe(k) }
+  let drawnSize = 0;
 
   function showStep() {
     const k = Number(slider.value);
@@ -36,8 +39,13 @@ export function frameStepper(id, sliderLabel, caption) {
     img.alt = `Rotation frames 0 to ${k}, frame ${k} bold: ${words}`;
     figure.dataset.step = String(k);
     note.textContent = caption;
-    img.src = framesUrl(run.request, k);
+    const size = Math.min(MAX_SIZE, imageWidth(figure));
+    drawnSize = size;
+    img.width = size;
+    img.height = size;
+    img.src = framesUrl(run.request, k, size);
   }
+  onWidthChange(figure, (width) => run && Math.min(MAX_SIZE, width) !== drawnSize && showStep());
   slider.addEventListener('input', showStep);
   // A failed picture says why: the GET's JSON error, fetched again to read its message.
   img.addEventListener('error', async () => {
