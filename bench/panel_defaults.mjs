@@ -1,15 +1,17 @@
 // Click-to-complete time of every dashboard panel with its default form: from the click on Run until the run
 // has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (frames, heatmap,
 // basin PNG). Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
-// the machine's load average before and after, since the machine is shared.
-//   node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions=3]
+// the machine's load average before and after, since the machine is shared. With a screenshot directory it then
+// saves every panel, its defaults run, at 1440x900 and, run again, at 390x844 (docs/screenshots/ holds these).
+//   node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions=3] [screenshot-dir]
 import { loadavg } from 'node:os';
-import { resolve } from 'node:path';
+import { mkdirSync } from 'node:fs';
+import { join, resolve } from 'node:path';
 import { launchChromium, loadPlaywright, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
 
-const [binary, webRoot, reps = '3'] = process.argv.slice(2);
+const [binary, webRoot, reps = '3', shots] = process.argv.slice(2);
 if (!binary || !webRoot) {
-  console.error('usage: node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions]');
+  console.error('usage: node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions] [screenshot-dir]');
   process.exit(2);
 }
 watchdog(1_800_000);
@@ -48,6 +50,23 @@ for (const [name, id] of PANELS) {
   for (let i = 0; i < Number(reps); i++) times.push(await clickToComplete(page, id));
   console.log(`${name}: median ${median(times).toFixed(0)} ms click to complete ` +
     `(runs: ${times.map((t) => t.toFixed(0)).join(', ')} ms), load average now ${load()}`);
+}
+if (shots) {
+  mkdirSync(shots, { recursive: true });
+  for (const [w, h] of [[1440, 900], [390, 844]]) {
+    await page.setViewportSize({ width: w, height: h });
+    for (const [name, id] of PANELS) {
+      await page.getByRole('tab', { name }).click();
+      // At the phone size the panel runs again, so that its server PNGs are drawn as a phone asks for them.
+      if (w !== 1440) console.log(`${name} at ${w}x${h}: ${(await clickToComplete(page, id)).toFixed(0)} ms click to complete`);
+      await page.evaluate(() => window.scrollTo(0, 0));
+      // Charts and server PNGs follow the new width (PNGs after a 250 ms settle and a new request).
+      await page.waitForTimeout(900);
+      await page.waitForFunction((panel) => [...document.querySelectorAll(`#${panel} img[src]`)]
+        .filter((img) => img.offsetParent !== null).every((img) => img.complete && img.naturalWidth > 0), id);
+      await page.screenshot({ path: join(shots, `${id}-${w}x${h}.png`), fullPage: true });
+    }
+  }
 }
 await stopAll();
 process.exit(0);

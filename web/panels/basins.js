@@ -12,6 +12,8 @@ import { DIFFERENTIALS, METHODS, STATUSES, fmtExp, label } from '../shared/label
 import { DEFAULTS, problemFields } from '../shared/request.js';
 import { statusBadge } from '../shared/summary.js';
 
+const MIN_PANEL = 200;  // pixels per method's panel in the server PNG, with room for its title
+
 const ROOTS = catalog.colors.basin_roots;
 const DARKEST = catalog.colors.basin_darkest;
 
@@ -33,7 +35,7 @@ export function createBasinsPanel(root, { openSolve }) {
   const details = el('aside', { class: 'cell-details', id: 'basin-details', 'aria-live': 'polite' },
     el('p', { class: 'hint' }, 'Hover or tap a pixel to see where its start went; click to open it in Solve.'));
   const image = el('figure', { class: 'heatmap', hidden: true },
-    el('img', { id: 'basin-img', alt: 'Server-rendered basin map, one panel per method' }),
+    el('div', { class: 'scroll-x' }, el('img', { id: 'basin-img', alt: 'Server-rendered basin map, one panel per method' })),
     el('figcaption', {}, 'Server-rendered basin map (PNG): a to the right, b upward, one panel per method.'));
   const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image);
   root.append(form, output);
@@ -153,8 +155,11 @@ export function createBasinsPanel(root, { openSolve }) {
 
   async function renderImage(signal) {
     const q = last.request;
-    // As wide as the panel (the map is computed again on the server, so a resize does not redraw it).
-    const url = await postImage('/api/v1/render/basins', { ...q, width: imageWidth(output), height: 0 }, { signal });
+    // As wide as the panel (the map is computed again on the server, so a resize does not redraw it), but at
+    // least MIN_PANEL pixels per method: on a phone the picture scrolls sideways rather than shrink its panels
+    // (one picture, so that each root keeps one colour across the methods).
+    const width = Math.max(imageWidth(output), MIN_PANEL * q.methods.length + 60);
+    const url = await postImage('/api/v1/render/basins', { ...q, width, height: 0 }, { signal });
     if (imageUrl) URL.revokeObjectURL(imageUrl);
     imageUrl = url;
     image.querySelector('img').src = url;

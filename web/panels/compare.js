@@ -93,13 +93,14 @@ function timeToTol([cpu, residual], tol) {
 }
 
 function resultsTable(rows) {
-  const head = ['Method', 'Status', 'Why', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time to tol (CPU)',
-    'Solver CPU time'];
+  // The reason last: on a phone its long text pushes what follows out of view.
+  const head = ['Method', 'Status', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time to tol (CPU)', 'Solver CPU time',
+    'Why'];
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, rows.map(([name, r, ttol]) => el('tr', {},
-      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)), el('td', { class: 'why' }, mathText(r.reason)),
+      el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)),
       el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
       el('td', { 'data-col': 'time-to-tol' }, ttol === null ? 'not reached' : fmtSeconds(ttol)),
-      el('td', {}, fmtSeconds(r.cpu_seconds))))));
+      el('td', { 'data-col': 'cpu-seconds' }, fmtSeconds(r.cpu_seconds)), el('td', { class: 'why' }, mathText(r.reason))))));
 }

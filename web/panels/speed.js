@@ -133,7 +133,7 @@ function drawEnergy(box, runs) {
 }
 
 function integrateTable(runs) {
-  const head = ['Choice', 'Status', 'Global error', 'Energy drift', '\u2016y\u1d40y \u2212 I\u2016', 'CPU time'];
+  const head = ['Choice', 'Status', 'Global error', 'Energy drift', '\u2016y\u1d40y \u2212 I\u2016', 'Solver CPU time'];
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, runs.map(({ choice, result: r }) => el('tr', {},
