@@ -82,17 +82,20 @@ struct PaperSine {
   // On the basis of so(N), dy = y b_ab = y_:a e_b^T - y_:b e_a^T has rank 2, so with s y and s y y formed once
   // every column of the product rule is a sum of outer products: O(N^2) per column instead of O(N^3).
   Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
-    using Eigen::MatrixXd;
+    using Eigen::MatrixXd, Eigen::VectorXd;
     const int n = static_cast<int>(y.rows());
     const MatrixXd s = y.array().sin().matrix(), c = y.array().cos().matrix();
     const MatrixXd p = 2.0 * y - 5.0 * y * y;
     const MatrixXd sy = s * y, syy = sy * y;
     MatrixXd m(n * (n - 1) / 2, n * (n - 1) / 2), du(n, n);
+    VectorXd ca_yb(n), cb_ya(n);
     for (int a = 0, col = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b, ++col) {
-        // du = ds p + s dp with ds = cos.(y) .* dy and s dp = 2 s dy - 5 (s dy y + s y dy)
-        du.noalias() = c.col(b).cwiseProduct(y.col(a)) * p.row(b) - c.col(a).cwiseProduct(y.col(b)) * p.row(a);
-        du.noalias() -= 5.0 * (sy.col(a) * y.row(b) - sy.col(b) * y.row(a));
+        // du = ds p + s dp with ds = cos.(y) .* dy and s dp = 2 s dy - 5 (s dy y + s y dy), column by column
+        cb_ya = c.col(b).cwiseProduct(y.col(a));
+        ca_yb = c.col(a).cwiseProduct(y.col(b));
+        for (int j = 0; j < n; ++j)
+          du.col(j) = cb_ya * p(b, j) - ca_yb * p(a, j) - 5.0 * (sy.col(a) * y(b, j) - sy.col(b) * y(a, j));
         du.col(b) += 2.0 * sy.col(a) - 5.0 * syy.col(a);
         du.col(a) -= 2.0 * sy.col(b) - 5.0 * syy.col(b);
         for (int i = 0, k = 0; i < n; ++i)

@@ -55,40 +55,16 @@ class AdFunction {
       }
   }
 
-  // X (in Q's basis) -> F(ad) X, in place. Scalar code on the entries (J only permutes them and flips signs):
-  // this runs q times per q x q matrix, and small Eigen blocks cost more than the arithmetic.
+  // X (in Q's basis) -> F(ad) X, in place, block pair by block pair.
   void apply_in_q_basis(Mat& x) const {
-    for (std::size_t k = 0; k < nb_; ++k) {
-      const auto& bk = s_.blocks[k];
+    for (std::size_t k = 0; k < nb_; ++k)
       for (std::size_t l = 0; l < nb_; ++l) {
-        const auto& bl = s_.blocks[l];
-        const int r = bk.start, c = bl.start;
-        const std::complex<double> fm = minus_[k * nb_ + l];
-        if (bk.size == 2 && bl.size == 2) {
-          // m = a + b with a = (m - J m J)/2 commuting with J (sees F(i(theta_k - theta_l))) and b = (m + J m J)/2
-          // anticommuting (F(i(theta_k + theta_l))); J m J = [-m11 m10; m01 -m00].
-          const double m00 = x(r, c), m01 = x(r, c + 1), m10 = x(r + 1, c), m11 = x(r + 1, c + 1);
-          const double a00 = 0.5 * (m00 + m11), a01 = 0.5 * (m01 - m10), a10 = 0.5 * (m10 - m01), a11 = 0.5 * (m11 + m00);
-          const double b00 = 0.5 * (m00 - m11), b01 = 0.5 * (m01 + m10), b10 = 0.5 * (m10 + m01), b11 = 0.5 * (m11 - m00);
-          const std::complex<double> fp = plus_[k * nb_ + l];
-          // F X = re X + im J X per part, J [u00 u01; u10 u11] = [-u10 -u11; u00 u01].
-          x(r, c) = (fm.real() * a00 + fm.imag() * -a10) + (fp.real() * b00 + fp.imag() * -b10);
-          x(r, c + 1) = (fm.real() * a01 + fm.imag() * -a11) + (fp.real() * b01 + fp.imag() * -b11);
-          x(r + 1, c) = (fm.real() * a10 + fm.imag() * a00) + (fp.real() * b10 + fp.imag() * b00);
-          x(r + 1, c + 1) = (fm.real() * a11 + fm.imag() * a01) + (fp.real() * b11 + fp.imag() * b01);
-        } else if (bk.size == 2) {  // a column pair [u0; u1] -> re u + im J u
-          const double u0 = x(r, c), u1 = x(r + 1, c);
-          x(r, c) = fm.real() * u0 + fm.imag() * -u1;
-          x(r + 1, c) = fm.real() * u1 + fm.imag() * u0;
-        } else if (bl.size == 2) {  // a row pair, acted on as the transposed column
-          const double u0 = x(r, c), u1 = x(r, c + 1);
-          x(r, c) = fm.real() * u0 + fm.imag() * -u1;
-          x(r, c + 1) = fm.real() * u1 + fm.imag() * u0;
-        } else {
-          x(r, c) *= fm.real();
-        }
+        const Entries e = entries(k, l);
+        double m[4];
+        for (int i = 0; i < e.count; ++i) m[i] = x(e.row[i], e.col[i]);
+        map_block(k, l, m);
+        for (int i = 0; i < e.count; ++i) x(e.row[i], e.col[i]) = m[i];
       }
-    }
   }
 
   Mat apply(const Mat& u) const {
@@ -98,22 +74,88 @@ class AdFunction {
     return 0.5 * (r - r.transpose());
   }
 
-  // The q x q matrix of F(ad_v) on the paper's basis. Q^T b Q for b = E_ab - E_ba is the rank-2
-  // q_a q_b^T - q_b q_a^T (q_a = row a of Q), so each column costs one N^3 product instead of three.
-  Mat matrix() const {
-    const int n = static_cast<int>(s_.q.rows());
-    Mat out(algebra_dim(n), algebra_dim(n));
-    int col = 0;
-    for (int a = 0; a < n; ++a)
-      for (int b = a + 1; b < n; ++b, ++col) {
-        Mat x = s_.q.row(a).transpose() * s_.q.row(b) - s_.q.row(b).transpose() * s_.q.row(a);
-        apply_in_q_basis(x);
-        out.col(col) = vee(s_.q * x * s_.q.transpose());
+  // P and F(ad_v) P (son.hpp). Column (ij) of P is vee(Q b Q^T) for b = E_ij - E_ji, i.e. entries
+  // Q_ai Q_bj - Q_aj Q_bi at a < b; in Q's basis F(ad) couples only the coordinates of one block pair (at most 4),
+  // so column e of F(ad) P = P Psi (Psi: F(ad) on Q's coordinates) combines at most 4 columns of P. O(q^2).
+  SpectralBasis in_spectral_basis() const {
+    const Mat& q = s_.q;
+    const int n = static_cast<int>(q.rows()), dim = algebra_dim(n);
+    SpectralBasis out{Mat(dim, dim), Mat::Zero(dim, dim)};
+    for (int i = 0, col = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j, ++col)
+        for (int a = 0, row = 0; a + 1 < n; row += n - 1 - a, ++a)
+          out.basis.col(col).segment(row, n - 1 - a) =
+              q(a, i) * q.col(j).tail(n - 1 - a) - q(a, j) * q.col(i).tail(n - 1 - a);
+    const auto index = [n](int i, int j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); };
+    for (std::size_t k = 0; k < nb_; ++k)
+      for (std::size_t l = k; l < nb_; ++l) {
+        const Entries e = entries(k, l);
+        if (k == l) {  // a 2x2 diagonal block [0 x; -x 0] of a skew X: coordinate (r, r + 1) alone
+          if (e.count < 4) continue;
+          double m[4] = {0.0, 1.0, -1.0, 0.0};
+          map_block(k, l, m);
+          const int c = index(e.row[1], e.col[1]);
+          out.times_basis.col(c) = m[1] * out.basis.col(c);
+          continue;
+        }
+        for (int from = 0; from < e.count; ++from) {  // column `from` of the block's map, onto P's columns
+          double m[4] = {0.0, 0.0, 0.0, 0.0};
+          m[from] = 1.0;
+          map_block(k, l, m);
+          auto target = out.times_basis.col(index(e.row[from], e.col[from]));
+          for (int to = 0; to < e.count; ++to)
+            if (m[to] != 0.0) target += m[to] * out.basis.col(index(e.row[to], e.col[to]));
+        }
       }
     return out;
   }
 
  private:
+  // The entries of block pair (k, l) in X, in the order (r, c), (r, c + 1), (r + 1, c), (r + 1, c + 1) of those
+  // the block sizes have.
+  struct Entries {
+    int count = 0;
+    int row[4], col[4];
+  };
+  Entries entries(std::size_t k, std::size_t l) const {
+    const auto& bk = s_.blocks[k];
+    const auto& bl = s_.blocks[l];
+    Entries e;
+    for (int i = 0; i < bk.size; ++i)
+      for (int j = 0; j < bl.size; ++j, ++e.count) {
+        e.row[e.count] = bk.start + i;
+        e.col[e.count] = bl.start + j;
+      }
+    return e;
+  }
+
+  // F(ad) on block pair (k, l), its entries m in the order of entries(k, l). Scalar code (J only permutes the
+  // entries and flips signs): small Eigen blocks cost more than the arithmetic.
+  void map_block(std::size_t k, std::size_t l, double* m) const {
+    const auto& bk = s_.blocks[k];
+    const auto& bl = s_.blocks[l];
+    const std::complex<double> fm = minus_[k * nb_ + l];
+    if (bk.size == 2 && bl.size == 2) {
+      // m = a + b with a = (m - J m J)/2 commuting with J (sees F(i(theta_k - theta_l))) and b = (m + J m J)/2
+      // anticommuting (F(i(theta_k + theta_l))); J m J = [-m11 m10; m01 -m00].
+      const double m00 = m[0], m01 = m[1], m10 = m[2], m11 = m[3];
+      const double a00 = 0.5 * (m00 + m11), a01 = 0.5 * (m01 - m10), a10 = 0.5 * (m10 - m01), a11 = 0.5 * (m11 + m00);
+      const double b00 = 0.5 * (m00 - m11), b01 = 0.5 * (m01 + m10), b10 = 0.5 * (m10 + m01), b11 = 0.5 * (m11 - m00);
+      const std::complex<double> fp = plus_[k * nb_ + l];
+      // F X = re X + im J X per part, J [u00 u01; u10 u11] = [-u10 -u11; u00 u01].
+      m[0] = (fm.real() * a00 + fm.imag() * -a10) + (fp.real() * b00 + fp.imag() * -b10);
+      m[1] = (fm.real() * a01 + fm.imag() * -a11) + (fp.real() * b01 + fp.imag() * -b11);
+      m[2] = (fm.real() * a10 + fm.imag() * a00) + (fp.real() * b10 + fp.imag() * b00);
+      m[3] = (fm.real() * a11 + fm.imag() * a01) + (fp.real() * b11 + fp.imag() * b01);
+    } else if (bk.size == 2 || bl.size == 2) {  // a column pair [u0; u1] -> re u + im J u (a row pair: transposed)
+      const double u0 = m[0], u1 = m[1];
+      m[0] = fm.real() * u0 + fm.imag() * -u1;
+      m[1] = fm.real() * u1 + fm.imag() * u0;
+    } else {
+      m[0] *= fm.real();
+    }
+  }
+
   const SpectralForm& s_;
   std::size_t nb_;
   std::vector<std::complex<double>> minus_, plus_;
@@ -416,8 +458,21 @@ double max_angle(const Mat& r) {
 
 Mat dexp(const SpectralForm& v, const Mat& u) { return AdFunction(v, dexp_function).apply(u); }
 Mat dexpinv(const SpectralForm& v, const Mat& u) { return AdFunction(v, dexpinv_function).apply(u); }
-Mat dexp_matrix(const SpectralForm& v) { return AdFunction(v, dexp_function).matrix(); }
-Mat dexpinv_matrix(const SpectralForm& v) { return AdFunction(v, dexpinv_function).matrix(); }
+
+namespace {
+Mat matrix_of(const SpectralBasis& b) {
+  Mat m;
+  m.noalias() = b.times_basis * b.basis.transpose();
+  return m;
+}
+}  // namespace
+
+SpectralBasis dexp_in_spectral_basis(const SpectralForm& v) { return AdFunction(v, dexp_function).in_spectral_basis(); }
+SpectralBasis dexpinv_in_spectral_basis(const SpectralForm& v) {
+  return AdFunction(v, dexpinv_function).in_spectral_basis();
+}
+Mat dexp_matrix(const SpectralForm& v) { return matrix_of(dexp_in_spectral_basis(v)); }
+Mat dexpinv_matrix(const SpectralForm& v) { return matrix_of(dexpinv_in_spectral_basis(v)); }
 
 Mat ad_matrix(const Mat& v) {
   // [v, E_ab - E_ba] = v_:a e_b^T - v_:b e_a^T - e_a v_b: + e_b v_a:, assembled without N^3 products.

@@ -67,7 +67,17 @@ inline Mat bracket(const Mat& a, const Mat& b) { return a * b - b * a; }
 //   dexpinv_v(U) = U + 1/2 [v,U] + sum_p B_2p/(2p)! ad_v^2p (U)       (3.9)
 Mat dexp(const SpectralForm& v, const Mat& u);
 Mat dexpinv(const SpectralForm& v, const Mat& u);
-// Their q x q matrices on the paper's basis, in O(N^5) (one N^3 product per column).
+// The spectral basis P of v: the q x q orthogonal matrix of U -> Q U Q^T on the paper's coordinates (column
+// (ij) = vee(Q (E_ij - E_ji) Q^T)), with F(ad_v) P for F = dexp or dexpinv, both in O(N^4). In Q's basis F(ad_v)
+// is block-sparse (see AdFunction in son.cpp), so its matrix is F(ad_v) = (F(ad_v) P) P^T, and a Newton system
+// D u = -f with D = F(ad_v) - H is solved as (F(ad_v) P - H P) w = -f, u = P w, without ever forming F(ad_v).
+struct SpectralBasis {
+  Mat basis;        // P
+  Mat times_basis;  // F(ad_v) P
+};
+SpectralBasis dexp_in_spectral_basis(const SpectralForm& v);
+SpectralBasis dexpinv_in_spectral_basis(const SpectralForm& v);
+// Their q x q matrices on the paper's basis, (F(ad_v) P) P^T: O(N^4) plus one q x q product.
 Mat dexp_matrix(const SpectralForm& v);
 Mat dexpinv_matrix(const SpectralForm& v);
 // The q x q matrix of ad_v = [v, .], in O(N^4).

@@ -54,6 +54,10 @@ struct SONGroup {
   Vector dexpinv(const Spectral& s, const Vector& u) const { return vee(son::dexpinv(s, hat(u))); }
   Operator dexp_matrix(const Spectral& s) const { return son::dexp_matrix(s); }
   Operator dexpinv_matrix(const Spectral& s) const { return son::dexpinv_matrix(s); }
+  // Optional (solvers/equation.hpp uses it when a group has it): the spectral basis P of v with dexp_v P
+  // resp. dexpinv_v P, in O(N^4); the Newton step solves in it without forming the O(N^5) matrices.
+  son::SpectralBasis dexp_in_spectral_basis(const Spectral& s) const { return son::dexp_in_spectral_basis(s); }
+  son::SpectralBasis dexpinv_in_spectral_basis(const Spectral& s) const { return son::dexpinv_in_spectral_basis(s); }
 
   double defect(const Element& y) const { return (y.transpose() * y - identity()).norm(); }
   Element project(const Element& y) const { return orthogonal_polar_factor(y); }

@@ -38,6 +38,7 @@ class GroupChart {
     return next;
   }
   Operator matrix(const Point& p) const { return eq_.df_matrix(p, d_); }
+  FactoredOperator<Operator> factored_matrix(const Point& p) const { return eq_.df_factored(p, d_); }
   Vector apply(const Point& p, const Vector& w) const { return eq_.df(p, w, d_); }
   double size(const Point&) const { return 0.0; }  // the group is compact: no iterate can run away
 
@@ -70,6 +71,7 @@ class AlgebraChart {
     return p.v + s;
   }
   Operator matrix(const Point& p) const { return eq_.dftilde_matrix(p, d_); }
+  FactoredOperator<Operator> factored_matrix(const Point& p) const { return eq_.dftilde_factored(p, d_); }
   Vector apply(const Point& p, const Vector& w) const { return eq_.dftilde(p, w, d_); }
   double size(const Point& p) const { return p.v.norm(); }  // ||v||, watched for divergence
 

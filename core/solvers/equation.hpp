@@ -17,6 +17,8 @@
 #include "core/groups/log_domain.hpp"
 #include "core/options.hpp"
 #include "core/problems.hpp"
+#include "factored_operator.hpp"
+#include "product_skipping_zeros.hpp"
 
 namespace lienewton {
 
@@ -177,6 +179,20 @@ class Equation {
     }
   }
 
+  // df_y as A P^T for the Newton step (newton_step.hpp). Exact, with a group that has a spectral basis P of v
+  // (son::SpectralBasis): A = dexpinv_v P - h dg_y P, O(N^4) plus the product dg_y P (O(N^4) for a sparse dg_y,
+  // as paper-linear's), where the matrix of (3.8) costs O(N^5). Otherwise A = df_matrix, no P.
+  FactoredOperator<Operator> df_factored(const Point& p, Differential d) const {
+    if constexpr (kHasSpectralBasis) {
+      if (field_ && d == Differential::exact) {
+        auto [basis, a] = group_.dexpinv_in_spectral_basis(p.v_form);
+        a -= product_skipping_zeros(Operator(h_ * field_->dg_matrix(group_, p.y)), basis);
+        return {std::move(a), std::move(basis)};
+      }
+    }
+    return {df_matrix(p, d), std::nullopt};
+  }
+
   // The q x q matrix of df~_v on the basis.
   Operator dftilde_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
@@ -196,6 +212,17 @@ class Equation {
         return identity_operator(group_) - hdg * (identity_operator(group_) - 0.5 * group_.ad_matrix(p.v));
       default: return identity_operator(group_) - hdg * group_.dexp_matrix(p.v_form);
     }
+  }
+
+  // df~_v as A P^T (see df_factored): exact, (3.22) times P is P - h dg_y (dexp_v P).
+  FactoredOperator<Operator> dftilde_factored(const Point& p, Differential d) const {
+    if constexpr (kHasSpectralBasis) {
+      if (field_ && d == Differential::exact) {
+        const auto [basis, dexp_basis] = group_.dexp_in_spectral_basis(p.v_form);
+        return {basis - product_skipping_zeros(Operator(h_ * field_->dg_matrix(group_, p.y)), dexp_basis), basis};
+      }
+    }
+    return {dftilde_matrix(p, d), std::nullopt};
   }
 
   // The fixed-point map (1.2): y -> z exp(h g(y)).
@@ -263,6 +290,11 @@ class Equation {
   }
 
  private:
+  static constexpr bool kHasSpectralBasis = requires(const G g, const Spectral s) {
+    g.dexpinv_in_spectral_basis(s);
+    g.dexp_in_spectral_basis(s);
+  };
+
   Equation(G group, Element z, double h, const VectorField<G>* field, UserF f, UserDf df)
       : group_(group), z_(group_.project(z)), z_inv_(group_.inverse(z_)), h_(h), field_(field),
         f_(std::move(f)), df_(std::move(df)), z_adjustment_((z - z_).norm()), y0_(z_) {}

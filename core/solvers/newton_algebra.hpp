@@ -28,7 +28,7 @@ SolveResult newton_algebra(const Equation<G>& eq, const SolverOptions& opt, cons
     if (!p.in_domain) return run.left_log_domain(p);
     if (auto stop = run.record(p, step)) return run.finish(*stop);
     const detail::StepOutcome outcome = detail::newton_step<G>(
-        krylov, [&] { return chart.matrix(p); }, [&](const typename G::Vector& w) { return chart.apply(p, w); },
+        krylov, [&] { return chart.factored_matrix(p); }, [&](const typename G::Vector& w) { return chart.apply(p, w); },
         p.f, u);
     if (outcome != detail::StepOutcome::ok) return run.finish(detail::status_of(outcome));
     step = u.norm();

@@ -27,7 +27,7 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
     detail::StepOutcome outcome;
     try {
       outcome = detail::newton_step<G>(
-          krylov, [&] { return chart.matrix(p); }, [&](const typename G::Vector& w) { return chart.apply(p, w); },
+          krylov, [&] { return chart.factored_matrix(p); }, [&](const typename G::Vector& w) { return chart.apply(p, w); },
           p.f, u);
     } catch (const LogDomainError& e) {
       return run.finish(Status::left_log_domain, e.what());

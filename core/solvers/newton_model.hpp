@@ -33,7 +33,7 @@ class NewtonModel {
   // Newton's step u: D u = -f, (3.5) or (3.20), by the configured linear solver.
   detail::StepOutcome newton(Vector& u) {
     return detail::newton_step<G>(
-        krylov_, [&] { return matrix(); }, [&](const Vector& w) { return chart_.apply(p_, w); }, p_.f, u);
+        krylov_, [&] { return FactoredOperator<Operator>{matrix(), std::nullopt}; }, [&](const Vector& w) { return chart_.apply(p_, w); }, p_.f, u);
   }
   const Operator& matrix() {
     if (!d_) d_ = chart_.matrix(p_);

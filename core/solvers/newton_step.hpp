@@ -8,6 +8,7 @@
 
 #include "core/gmres.hpp"
 #include "core/status.hpp"
+#include "factored_operator.hpp"
 #include "iteration_monitor.hpp"
 
 namespace lienewton {
@@ -37,8 +38,8 @@ bool well_conditioned(const Lu& lu) {
   return lu.rcond() >= kSingularRcond;
 }
 
-// Solves D u = -f for the Newton step, D given by `assemble` (dense LU with partial pivoting, refused when
-// its reciprocal condition number is below kSingularRcond) or, matrix-free, by `apply` inside GMRES with the
+// Solves D u = -f for the Newton step, D = A P^T given by `assemble` (dense LU of A with partial pivoting, refused
+// when its reciprocal condition number is below kSingularRcond) or, matrix-free, by `apply` inside GMRES with the
 // forcing term eta = min(0.1, ||f||): ||D u + f|| <= eta ||f|| keeps Newton's convergence quadratic
 // (Eisenstat & Walker 1996; Dembo, Eisenstat & Steihaug 1982).
 template <class G, class Assemble, class Apply>
@@ -54,11 +55,12 @@ StepOutcome newton_step(bool krylov, const Assemble& assemble, const Apply& appl
     u = x;
     return StepOutcome::ok;
   }
-  const typename G::Operator d = assemble();
-  if (!d.allFinite()) return StepOutcome::non_finite;
-  const Eigen::PartialPivLU<typename G::Operator> lu(d);
+  const FactoredOperator<typename G::Operator> d = assemble();
+  if (!d.a.allFinite()) return StepOutcome::non_finite;
+  const Eigen::PartialPivLU<typename G::Operator> lu(d.a);
   if (!well_conditioned(lu)) return StepOutcome::singular;
   u = -lu.solve(f);
+  if (d.basis) u = *d.basis * u;
   return StepOutcome::ok;
 }
 
