@@ -2,6 +2,8 @@
 // differences of f with a step-size slope check.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "core/solve.hpp"
 #include "core/solvers/run_method.hpp"
 #include "core/start_point.hpp"
@@ -35,6 +37,31 @@ TEST_P(Differentials, AssembledMatricesMatchColumnApplication) {
   // dg's structured matrix equals the generic column loop.
   const Eigen::MatrixXd dg = field->dg_matrix(g, y1);
   for (int i = 0; i < g.dim(); ++i) EXPECT_LT((dg.col(i) - field->dg(y1, basis_vector(g, i))).norm(), 1e-13 * (1 + dg.norm()));
+}
+
+// The exact Newton step's factored form D = A P^T (SO(N), equation.hpp df_factored / dftilde_factored): P
+// orthogonal to rounding (its entries are 2x2 minors of Q), and A P^T equal to the matrix-free differential
+// (two N^3 products with Q per application, no P) column by column.
+TEST_P(Differentials, FactoredMatricesMatchColumnApplication) {
+  const auto [problem, n] = GetParam();
+  const SONGroup g(n);
+  const auto field = make_field(g, problem, RigidBodyParams{});
+  const auto eq = equation(g, *field, 3, 0.7);
+  const auto p1 = eq.at(g.times_exp(eq.z(), 0.3 * Eigen::VectorXd::LinSpaced(g.dim(), -1, 1)));
+  const auto p2 = eq.at_algebra(0.3 * Eigen::VectorXd::LinSpaced(g.dim(), 1, -0.5));
+  const auto f1 = eq.df_factored(p1, Differential::exact);
+  const auto f2 = eq.dftilde_factored(p2, Differential::exact);
+  ASSERT_TRUE(f1.basis && f2.basis);
+  const int q = g.dim();
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  for (const Eigen::MatrixXd* b : {&*f1.basis, &*f2.basis})
+    EXPECT_LT((b->transpose() * *b - Eigen::MatrixXd::Identity(q, q)).norm(), 16.0 * n * kEps * q);
+  const Eigen::MatrixXd m1 = f1.a * f1.basis->transpose(), m2 = f2.a * f2.basis->transpose();
+  for (int i = 0; i < q; ++i) {
+    const Eigen::VectorXd e = basis_vector(g, i);
+    EXPECT_LT((m1.col(i) - eq.df(p1, e, Differential::exact)).norm(), 1e-13 * (1 + m1.norm())) << "col " << i;
+    EXPECT_LT((m2.col(i) - eq.dftilde(p2, e, Differential::exact)).norm(), 1e-13 * (1 + m2.norm())) << "col " << i;
+  }
 }
 
 TEST_P(Differentials, ExactDifferentialMatchesCentralDifferencesWithSlopeTwo) {
