@@ -2,15 +2,17 @@
 // Continuation in the step size (issue 14, section 3). The implicit Euler equation
 //   f_h(y) = log(z^-1 y) - h g(y) = 0                                                     (3.6)
 // has the root y = z at h = 0, and its root moves continuously with h while h g(y) stays inside log's branch.
-// A continued solve reaches the requested h through h_0 < h_1 < ... < h_K = h, each stage's iteration started
-// at the previous stage's root:
+// A continued solve first solves at the requested h from where eq starts (the plain solve: a cell it converges on
+// costs nothing more, and converges on the same y). Only when that fails does it reach h through
+// h_0 < h_1 < ... < h_K = h, each stage's iteration started at the previous stage's root:
 //   h_k = h 2^(k-K),  K = max(0, ceil(log2(h / kContinuationStart))),
 // while no stage fails: h_0 <= 1/16 and every stage doubles h. A stage that fails shrinks the ratio to its square
 // root (2, 1.41, 1.19, 1.09, ...) and is retried that much beyond the last root (a failed first stage: at a quarter
 // of its h). After kMaxFailedStages failures, a ratio below kSmallestContinuationRatio or kMaxContinuationStages
 // stages, the last stage is the requested h itself, started at the last root found.
 // Only the solve at the requested h decides the result: its status, y, residual and trace are the plain
-// solver's, so a continued result is as honest as a plain one; result.continuation lists every stage.
+// solver's, so a continued result is as honest as a plain one; result.continuation lists every stage (the first
+// try included), and the reason says which stage its iteration count is and what the whole path cost.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -57,9 +59,14 @@ SolveResult continued(const Equation<G>& eq, const TraceCallback& cb, Solve solv
   double ratio = 2.0;                       // h_k+1 / h_k after a stage converged
   int failures = 0;
   bool final_try = false;                   // the path is stuck or long: solve at h from the last root
-  SolveResult result;
   double seconds = 0.0, cpu_seconds = 0.0;
-  for (;;) {
+  SolveResult result = solve(eq, tagged_with_step(cb, h));  // the first try: the plain solve at h
+  path.push_back({h, result.status, result.iterations, result.residual});
+  seconds += result.seconds;
+  cpu_seconds += result.cpu_seconds;
+  const bool done = result.status == Status::converged || result.status == Status::cancelled ||
+                    cancellation_requested() || target == h;  // below kContinuationStart there is no path
+  while (!done) {
     if (static_cast<int>(path.size()) + 1 >= kMaxContinuationStages || failures >= kMaxFailedStages) final_try = true;
     if (final_try) target = h;
     Equation<G> stage = eq.at_step(target);
@@ -97,6 +104,9 @@ SolveResult continued(const Equation<G>& eq, const TraceCallback& cb, Solve solv
   result.seconds = seconds;  // the whole path's time: what the answer cost
   result.cpu_seconds = cpu_seconds;
   result.continuation = std::move(path);
+  if (result.continuation.size() > 1)
+    result.reason += "; the iterations of the last of " + std::to_string(result.continuation.size()) +
+                     " continuation stages, " + std::to_string(result.total_iterations()) + " over all";
   return result;
 }
 

@@ -2,11 +2,9 @@
 // independent oracle (Eigen's matrix log and exp), the identity with the plain solve at small h, and cancellation.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
-#include "core/cancellation.hpp"
 #include "core/solve.hpp"
 #include "core/solvers/continuation.hpp"
 #include "residual_oracle.hpp"
@@ -62,7 +60,8 @@ void PrintTo(const Cell& c, std::ostream* os) {
 class ContinuedCell : public ::testing::TestWithParam<Cell> {};
 
 // Converged means ||f(y)|| <= tol at the requested h for the returned y, by the oracle (which rounds at ~1e-14 in
-// its own log: tol + 1e-13); the path ends at h, doubles while it does not fail, and its stages add up.
+// its own log: tol + 1e-13); the path first tries h itself, goes on from h_0 <= 1/16 only when that fails, ends
+// at h, doubles while it does not fail, and its stages add up.
 TEST_P(ContinuedCell, ConvergedIsTrueAtTheRequestedH) {
   const Cell c = GetParam();
   const SolveRequest req = request(c.problem, c.n, c.h, c.method, true);
@@ -71,11 +70,15 @@ TEST_P(ContinuedCell, ConvergedIsTrueAtTheRequestedH) {
   ASSERT_FALSE(r.continuation.empty());
   EXPECT_EQ(r.continuation.back().h, c.h);
   EXPECT_EQ(r.continuation.back().status, Status::converged);
-  EXPECT_LE(r.continuation.front().h, kContinuationStart);
+  EXPECT_EQ(r.continuation.front().h, c.h);
+  if (r.continuation.size() > 1) {
+    EXPECT_NE(r.continuation.front().status, Status::converged);
+    EXPECT_LE(r.continuation[1].h, kContinuationStart);
+  }
   int total = 0;
   for (std::size_t k = 0; k < r.continuation.size(); ++k) {
     total += r.continuation[k].iterations;
-    if (k > 0 && r.continuation[k - 1].status == Status::converged) {
+    if (k > 1 && r.continuation[k - 1].status == Status::converged) {
       EXPECT_LE(r.continuation[k].h, 2.0 * r.continuation[k - 1].h);
     }
   }
@@ -114,34 +117,56 @@ TEST(Continuation, RescuedCellsFailWithoutIt) {
   }
 }
 
-// The stream sees every stage's records tagged with their h; the result's trace is the last stage's.
+// Where the plain solve converges, the continued one is that solve: one stage at h, the same y and iterations.
+TEST(Continuation, ConvergedFirstTryIsThePlainSolve) {
+  const SolveResult plain = solve(request(ProblemKind::paper_sine, 5, 8.0, Method::newton_group, false));
+  const SolveResult continued = solve(request(ProblemKind::paper_sine, 5, 8.0, Method::newton_group, true));
+  ASSERT_EQ(plain.status, Status::converged);
+  ASSERT_EQ(continued.continuation.size(), 1u);
+  EXPECT_EQ(continued.continuation[0].h, 8.0);
+  EXPECT_EQ(continued.status, Status::converged);
+  EXPECT_EQ(continued.iterations, plain.iterations);
+  EXPECT_EQ(continued.total_iterations(), plain.iterations);
+  EXPECT_EQ(continued.y, plain.y);
+  EXPECT_EQ(continued.reason, plain.reason);
+}
+
+// The stream sees every stage's records tagged with their h (the failed first try at h, then the path from 1/16);
+// the result's trace is the last stage's, and its reason names both its own and the path's iteration counts.
 TEST(Continuation, StreamTagsEveryStageWithItsH) {
+  const Cell c = kRescued[0];
   std::vector<double> tags;
-  const SolveResult r = solve(request(ProblemKind::paper_linear, 4, 1.0, Method::newton_group, true),
-                              [&](const TraceRecord& t) {
-                                tags.push_back(t.stage_h.value_or(-1.0));
-                                return true;
-                              });
+  const SolveResult r = solve(request(c.problem, c.n, c.h, c.method, true), [&](const TraceRecord& t) {
+    tags.push_back(t.stage_h.value_or(-1.0));
+    return true;
+  });
   ASSERT_EQ(r.status, Status::converged);
-  ASSERT_EQ(r.continuation.size(), 5u);  // 1/16, 1/8, 1/4, 1/2, 1
+  ASSERT_GE(r.continuation.size(), 3u);
   std::size_t records = 0;
   for (const ContinuationStage& s : r.continuation) records += static_cast<std::size_t>(s.iterations) + 1;
   ASSERT_EQ(tags.size(), records);
-  EXPECT_EQ(tags.front(), 1.0 / 16);
-  EXPECT_EQ(tags.back(), 1.0);
-  for (const TraceRecord& t : r.trace) EXPECT_EQ(t.stage_h, 1.0);
+  EXPECT_EQ(tags.front(), c.h);
+  EXPECT_EQ(tags[static_cast<std::size_t>(r.continuation[0].iterations) + 1], r.continuation[1].h);
+  EXPECT_EQ(r.continuation[1].h, 1.0 / 16);
+  EXPECT_EQ(tags.back(), c.h);
+  for (const TraceRecord& t : r.trace) EXPECT_EQ(t.stage_h, c.h);
+  EXPECT_NE(r.reason.find("after " + std::to_string(r.iterations) + " iterations"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("the last of " + std::to_string(r.continuation.size()) + " continuation stages, " +
+                          std::to_string(r.total_iterations()) + " over all"),
+            std::string::npos)
+      << r.reason;
 }
 
-// A deadline that has passed stops the path in its first stage; the result says cancelled, and its residual is
-// the returned y's at the requested h (by the oracle), not at the stage's.
+// A client that leaves once the path has started (its first record below h) stops the path in that stage; the
+// result says cancelled, and its residual is the returned y's at the requested h (by the oracle), not at the
+// stage's.
 TEST(Continuation, CancelledOnTheWayReportsTheResidualAtTheRequestedH) {
-  const CancellationToken expired(std::chrono::steady_clock::now(), nullptr, nullptr);
-  const CancellationScope scope(&expired);
-  const SolveRequest req = request(ProblemKind::paper_sine, 5, 8.0, Method::newton_group, true);
-  const SolveResult r = solve(req);
+  const Cell c = kRescued[0];
+  const SolveRequest req = request(c.problem, c.n, c.h, c.method, true);
+  const SolveResult r = solve(req, [&](const TraceRecord& t) { return t.stage_h == c.h; });
   EXPECT_EQ(r.status, Status::cancelled);
-  ASSERT_EQ(r.continuation.size(), 1u);
-  EXPECT_EQ(r.continuation[0].h, 1.0 / 16);
+  ASSERT_EQ(r.continuation.size(), 2u);
+  EXPECT_EQ(r.continuation[1].h, 1.0 / 16);
   EXPECT_NEAR(r.residual, oracle(req.problem.kind, req.h, req.problem.start(), r.y).residual, 1e-12);
 }
 
