@@ -7,15 +7,11 @@
 //      the curve crosses log's branch cut), Levenberg-Marquardt steps (D^T D + mu I) s = -D^T f with
 //      mu = ||D^T f||, 100 ||D^T f||, ... until one gives sufficient decrease;
 //   3. when phi is stationary to rounding while ||f|| is not small, local_minimum.
-// Sufficient decrease, nonmonotone (Grippo, Lampariello & Lucidi, SIAM J. Numer. Anal. 23, 1986):
-// phi(x + alpha s) <= max(phi of the last kNonmonotoneMemory iterates) + c1 alpha phi'(0), c1 = 1e-4, with alpha
+// Sufficient decrease (Armijo): phi(x + alpha s) <= phi(x) + c1 alpha phi'(0), c1 = 1e-4, with alpha
 // backtracked by safeguarded quadratic interpolation into [alpha/10, alpha/2] (Nocedal & Wright, Numerical
-// Optimization, 2nd ed., sec. 3.1 and 3.5). Measured against the worst recent merit, a full Newton step may
-// raise phi for a while: plain Newton's jumps across the cut at angle pi, which a monotone descent refuses
-// while it creeps along the cut, stay allowed, and the max still decreases, so the iteration stays global.
+// Optimization, 2nd ed., sec. 3.1 and 3.5).
 #include <algorithm>
 #include <cmath>
-#include <deque>
 
 #include "charts.hpp"
 #include "core/cancellation.hpp"
@@ -27,7 +23,6 @@ inline constexpr double kArmijoC1 = 1e-4;
 inline constexpr int kMaxBacktracks = 40;    // alpha >= 10^-40 at most: far below any useful step
 inline constexpr int kMaxDampings = 12;      // mu up to 10^22 ||D^T f||: a steepest-descent step at rounding
 inline constexpr double kMaxStepNorm = 3.14159265358979323846;  // ||s|| <= pi: exp is injective up to angle pi
-inline constexpr std::size_t kNonmonotoneMemory = 10;  // GLL's M: the merits the Armijo test compares with
 
 template <LieGroup G, class Chart>
 class LineSearch {
@@ -37,8 +32,6 @@ class LineSearch {
   explicit LineSearch(double tol) : tol_(tol) {}
 
   Advance<Chart> step(NewtonModel<G, Chart>& model, double floor) {
-    if (recent_.size() == kNonmonotoneMemory) recent_.pop_front();
-    recent_.push_back(model.merit());
     Vector u;
     const detail::StepOutcome newton = model.newton(u);
     if (newton == detail::StepOutcome::non_finite) return Advance<Chart>::stop(Status::non_finite);
@@ -70,14 +63,13 @@ class LineSearch {
   // no root, D is nearly singular and its Newton step, huge, only creeps along by backtracking).
   std::optional<Advance<Chart>> backtrack(NewtonModel<G, Chart>& model, const Vector& s, double slope,
                                           std::string_view kind, double floor) const {
-    const double reference = *std::max_element(recent_.begin(), recent_.end());
     const double phi0 = model.merit();
     const double norm = s.norm();
     double alpha = std::min(1.0, kMaxStepNorm / norm);
     for (int k = 0; k < kMaxBacktracks && alpha * norm > 0.0; ++k) {
       if (cancellation_requested()) return Advance<Chart>::stop(Status::cancelled);
       const Trial<Chart> t = try_step(model.chart(), model.point(), Vector(alpha * s));
-      if (t.merit <= reference + kArmijoC1 * alpha * slope) {
+      if (t.merit <= phi0 + kArmijoC1 * alpha * slope) {
         Advance<Chart> a;
         a.next = t.p;
         a.s = alpha * s;
@@ -98,7 +90,6 @@ class LineSearch {
   }
 
   double tol_;
-  std::deque<double> recent_;  // phi of the last kNonmonotoneMemory iterates, the current one last
 };
 
 }  // namespace lienewton
