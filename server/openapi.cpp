@@ -70,7 +70,8 @@ json schemas() {
   globalization["default"] = "none";
   const json continuation = json{
       {"type", "boolean"}, {"default", false},
-      {"description", "reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is retried at "
+      {"description", "first solve at h; only when that fails, "
+                      "reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is retried at "
                       "the geometric mean of its h and the last reached one), each stage started at the previous root; "
                       "the result's continuation lists the stages, and only the solve at h decides the status"}};
   json predictor = enum_schema(kAllPredictors,
