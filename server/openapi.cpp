@@ -70,10 +70,12 @@ json schemas() {
   globalization["default"] = "none";
   const json continuation = json{
       {"type", "boolean"}, {"default", false},
-      {"description", "first solve at h; only when that fails, "
-                      "reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is retried at "
-                      "the geometric mean of its h and the last reached one), each stage started at the previous root; "
-                      "the result's continuation lists the stages, and only the solve at h decides the status"}};
+      {"description", "first solve at h (with a globalization, then also the plain Newton at h); only when that "
+                      "fails, reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is "
+                      "retried at the geometric mean of its h and the last reached one), each stage started at the "
+                      "previous root; failing that, from the stiff end: solve from the identity of z's component at h, "
+                      "else at 2h, ..., 16h and halve back to h from the root found. The result's continuation lists "
+                      "the stages, and only a solve at h decides the status"}};
   json predictor = enum_schema(kAllPredictors,
                                "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
                                "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "
@@ -135,7 +137,9 @@ json schemas() {
                              {"continuation", object({{"stages", array_of(object({{"h", number("this stage's step size")},
                                                                                    {"status", status},
                                                                                    {"iterations", integer("")},
-                                                                                   {"residual", nullable_number("||f(y)|| at this stage's h")}},
+                                                                                   {"residual", nullable_number("||f(y)|| at this stage's h")},
+                                                                                   {"start", json{{"type", "string"}, {"enum", {"start", "root", "identity"}}, {"description", "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component"}}},
+                                                                                   {"globalization", globalization}},
                                                                                   {}, false))},
                                                       {"total_iterations", integer("summed over the stages")}},
                                                      {}, false)}},

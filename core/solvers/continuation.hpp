@@ -2,17 +2,26 @@
 // Continuation in the step size (issue 14, section 3). The implicit Euler equation
 //   f_h(y) = log(z^-1 y) - h g(y) = 0                                                     (3.6)
 // has the root y = z at h = 0, and its root moves continuously with h while h g(y) stays inside log's branch.
-// A continued solve first solves at the requested h from where eq starts (the plain solve: a cell it converges on
-// costs nothing more, and converges on the same y). Only when that fails does it reach h through
-// h_0 < h_1 < ... < h_K = h, each stage's iteration started at the previous stage's root:
-//   h_k = h 2^(k-K),  K = max(0, ceil(log2(h / kContinuationStart))),
-// while no stage fails: h_0 <= 1/16 and every stage doubles h. A stage that fails shrinks the ratio to its square
-// root (2, 1.41, 1.19, 1.09, ...) and is retried that much beyond the last root (a failed first stage: at a quarter
-// of its h). After kMaxFailedStages failures, a ratio below kSmallestContinuationRatio or kMaxContinuationStages
-// stages, the last stage is the requested h itself, started at the last root found.
-// Only the solve at the requested h decides the result: its status, y, residual and trace are the plain
-// solver's, so a continued result is as honest as a plain one; result.continuation lists every stage (the first
-// try included), and the reason says which stage its iteration count is and what the whole path cost.
+// A continued solve tries, in this order, until one converges at the requested h:
+//   1. the plain solve at h from where eq starts (a cell it converges on costs nothing more and keeps its y);
+//   2. with a globalization, the paper's full-step Newton at h from the same start (so a globalised continued
+//      solve never loses a cell the plain method converges on);
+//   3. the path from h = 0: h_0 < h_1 < ... < h_K = h, each stage started at the previous stage's root,
+//        h_k = h 2^(k-K),  K = max(0, ceil(log2(h / kContinuationStart))),
+//      while no stage fails: h_0 <= 1/16 and every stage doubles h;
+//   4. the path from the stiff end: as h -> infinity the roots of (1.1) tend to equilibria of y' = y g(y)
+//      (g(y) = 0), and the component identity J of z (I, or diag(-1, 1, ..., 1) when det z < 0) is one for
+//      both paper problems. Solve at h from J; failing that at 2h, 4h, ..., 2^kStiffDoublings h from J until
+//      a root is found, then halve back down to h, each stage from the previous root.
+// A path's stage that fails shrinks its ratio to the square root (2, 1.41, 1.19, ... going up; 1/2, 0.71, ...
+// coming down) and is retried that much beyond the last root (a failed first stage of the path from 0: at a
+// quarter of its h). After kMaxFailedStages failures, a ratio within 1% of 1 or kMaxContinuationStages stages,
+// the path's last stage is the requested h itself, started at the last root found. A stage whose solve ends
+// converged or stagnated (a root to rounding: at large h tol can be below the floor) is a root to go on from.
+// Only a solve at the requested h decides the result: its status, y, residual and trace are the plain solver's,
+// so a continued result is as honest as a plain one; result.continuation lists every stage (the tries at h
+// included, with where each started and its globalization), and the reason says which stage its iteration count
+// is and what the whole search cost.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +30,7 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "core/solver_options.hpp"
 #include "equation.hpp"
 #include "solve_result.hpp"
 
@@ -30,6 +40,7 @@ inline constexpr double kContinuationStart = 1.0 / 16;
 inline constexpr int kMaxContinuationStages = 64;
 inline constexpr int kMaxFailedStages = 8;
 inline constexpr double kSmallestContinuationRatio = 1.01;
+inline constexpr int kStiffDoublings = 4;
 
 // The first stage's h: h 2^-K, the largest h / 2^k not above kContinuationStart (h itself when h is below it).
 inline double first_continuation_step(double h) {
@@ -47,67 +58,143 @@ inline TraceCallback tagged_with_step(const TraceCallback& cb, double h) {
   };
 }
 
-// solve(equation, callback) is the plain solver of one stage. The callback sees the records of every stage, each
-// tagged with its stage's h (the iteration count restarts at 0 with every stage).
+// The searches of the file comment over one equation. solve(equation, options, callback) is the plain solver of
+// one stage; the callback sees the records of every stage, each tagged with its stage's h (the iteration count
+// restarts at 0 with every stage).
 template <LieGroup G, class Solve>
-SolveResult continued(const Equation<G>& eq, const TraceCallback& cb, Solve solve) {
-  const double h = eq.h();
-  std::vector<ContinuationStage> path;
-  std::optional<typename G::Element> root;  // the last stage's root; none: start where eq starts
-  double reached = 0.0;                     // the h of root (0: y = z solves f_0)
-  double target = first_continuation_step(h);
-  double ratio = 2.0;                       // h_k+1 / h_k after a stage converged
-  int failures = 0;
-  bool final_try = false;                   // the path is stuck or long: solve at h from the last root
-  double seconds = 0.0, cpu_seconds = 0.0;
-  SolveResult result = solve(eq, tagged_with_step(cb, h));  // the first try: the plain solve at h
-  path.push_back({h, result.status, result.iterations, result.residual});
-  seconds += result.seconds;
-  cpu_seconds += result.cpu_seconds;
-  const bool done = result.status == Status::converged || result.status == Status::cancelled ||
-                    cancellation_requested() || target == h;  // below kContinuationStart there is no path
-  while (!done) {
-    if (static_cast<int>(path.size()) + 1 >= kMaxContinuationStages || failures >= kMaxFailedStages) final_try = true;
-    if (final_try) target = h;
-    Equation<G> stage = eq.at_step(target);
-    if (root) stage.start_at(*root);
-    result = solve(stage, tagged_with_step(cb, target));
-    path.push_back({target, result.status, result.iterations, result.residual});
-    seconds += result.seconds;
-    cpu_seconds += result.cpu_seconds;
-    if (result.status == Status::cancelled || cancellation_requested()) break;
-    if (final_try || (target == h && result.status == Status::converged)) break;
-    if (result.status == Status::converged) {
-      root = typename G::Element(result.y);
-      reached = target;
-      target = std::min(h, ratio * target);
-      continue;
+class ContinuationSearch {
+ public:
+  using Element = typename G::Element;
+
+  ContinuationSearch(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb, Solve solve)
+      : eq_(eq), opt_(opt), cb_(cb), solve_(std::move(solve)), h_(eq.h()) {}
+
+  SolveResult run() {
+    SolveResult r = stage(h_, nullptr, kStartGiven, opt_);  // 1.
+    if (settled(r)) return finish(std::move(r));
+    if (opt_.globalization != Globalization::none) {  // 2.
+      SolverOptions plain = opt_;
+      plain.globalization = Globalization::none;
+      r = stage(h_, nullptr, kStartGiven, plain);
+      if (settled(r)) return finish(std::move(r));
     }
-    ++failures;
-    if (reached == 0.0) {
-      target /= 4.0;
-      continue;
+    if (first_continuation_step(h_) < h_) {  // 3. (below kContinuationStart there is no path from 0)
+      r = walk(std::nullopt, 0.0, first_continuation_step(h_), 2.0);
+      if (settled(r)) return finish(std::move(r));
     }
-    ratio = std::sqrt(ratio);
-    if (ratio < kSmallestContinuationRatio) final_try = true;
-    target = std::min(h, ratio * reached);
+    return finish(from_stiff_end(std::move(r)));  // 4.
   }
-  if (path.back().h != h) {  // cancelled on the way: the returned y's residual at the requested h
-    const auto p = eq.at(typename G::Element(result.y), Equation<G>::Need::residual);
-    result.status = Status::cancelled;
-    result.residual = p.in_domain ? p.residual : std::numeric_limits<double>::quiet_NaN();
-    result.algebra_residual.reset();
-    result.reason = "cancelled during continuation, at the stage h = " + std::to_string(path.back().h) + " of " +
-                    std::to_string(h) + ": " + result.reason;
+
+ private:
+  static constexpr const char* kStartGiven = "start";  // where eq starts: z, or the request's y0
+  static constexpr const char* kStartRoot = "root";    // the previous stage's root
+  static constexpr const char* kStartIdentity = "identity";
+
+  bool stopped(const SolveResult& r) const {
+    return r.status == Status::cancelled || cancellation_requested();
   }
-  for (TraceRecord& r : result.trace) r.stage_h = path.back().h;
-  result.seconds = seconds;  // the whole path's time: what the answer cost
-  result.cpu_seconds = cpu_seconds;
-  result.continuation = std::move(path);
-  if (result.continuation.size() > 1)
-    result.reason += "; the iterations of the last of " + std::to_string(result.continuation.size()) +
-                     " continuation stages, " + std::to_string(result.total_iterations()) + " over all";
-  return result;
+  // The search ends here: converged at h, or stopped.
+  bool settled(const SolveResult& r) const {
+    return stopped(r) || (result_h_ == h_ && r.status == Status::converged);
+  }
+  // A root to go on from: converged, or stagnated at its rounding floor.
+  static bool is_root(const SolveResult& r) {
+    return r.status == Status::converged || r.status == Status::stagnated;
+  }
+
+  // One stage: eq at step h from start (null: where eq starts), recorded on the path.
+  SolveResult stage(double h, const Element* start, const char* start_name, const SolverOptions& o) {
+    Equation<G> e = eq_.at_step(h);
+    if (start) e.start_at(*start);
+    SolveResult r = solve_(e, o, tagged_with_step(cb_, h));
+    path_.push_back({h, r.status, r.iterations, r.residual, start_name, o.globalization});
+    result_h_ = h;
+    seconds_ += r.seconds;
+    cpu_seconds_ += r.cpu_seconds;
+    return r;
+  }
+
+  // From root (the root at h = reached; none: eq's start, the root at h = 0) to h_ in steps of ratio (> 1 going
+  // up, < 1 coming down), first to target; the last stage's result.
+  SolveResult walk(std::optional<Element> root, double reached, double target, double ratio) {
+    const auto toward_h = [&](double x) { return ratio > 1.0 ? std::min(h_, x) : std::max(h_, x); };
+    const int first = static_cast<int>(path_.size());
+    int failures = 0;
+    bool final_try = false;  // the path is stuck or long: solve at h from the last root
+    for (;;) {
+      if (static_cast<int>(path_.size()) - first + 1 >= kMaxContinuationStages || failures >= kMaxFailedStages)
+        final_try = true;
+      if (final_try) target = h_;
+      SolveResult r = root ? stage(target, &*root, kStartRoot, opt_) : stage(target, nullptr, kStartGiven, opt_);
+      if (stopped(r) || final_try || (target == h_ && r.status == Status::converged)) return r;
+      if (is_root(r)) {
+        root = Element(r.y);
+        reached = target;
+        target = toward_h(ratio * target);
+        continue;
+      }
+      ++failures;
+      if (!root) {
+        target /= 4.0;
+        continue;
+      }
+      ratio = ratio > 1.0 ? std::sqrt(ratio) : 1.0 / std::sqrt(1.0 / ratio);
+      if (std::abs(std::log(ratio)) < std::log(kSmallestContinuationRatio)) final_try = true;
+      target = toward_h(ratio * reached);
+    }
+  }
+
+  // 4. of the file comment; last: the given start's last try at h, returned when this path finds no root.
+  SolveResult from_stiff_end(SolveResult last) {
+    const Element j = eq_.component_identity();
+    SolveResult r = stage(h_, &j, kStartIdentity, opt_);
+    if (settled(r)) return r;
+    for (int k = 1; k <= kStiffDoublings; ++k) {
+      const double big_h = std::ldexp(h_, k);
+      if (big_h > kLargestStiffStep) break;
+      SolveResult up = stage(big_h, &j, kStartIdentity, opt_);
+      if (stopped(up)) return up;
+      if (is_root(up)) return walk(Element(up.y), big_h, std::max(h_, big_h / 2), 0.5);
+    }
+    // No root above h: the answer stays the last try from the given start (its failure class says more of it).
+    result_h_ = h_;
+    return last;
+  }
+
+  SolveResult finish(SolveResult result) {
+    if (result_h_ != h_) {  // cancelled on the way: the returned y's residual at the requested h
+      const auto p = eq_.at(Element(result.y), Equation<G>::Need::residual);
+      result.status = Status::cancelled;
+      result.residual = p.in_domain ? p.residual : std::numeric_limits<double>::quiet_NaN();
+      result.algebra_residual.reset();
+      result.reason = "cancelled during continuation, at the stage h = " + std::to_string(result_h_) +
+                      " of " + std::to_string(h_) + ": " + result.reason;
+    }
+    for (TraceRecord& rec : result.trace) rec.stage_h = result_h_;
+    result.seconds = seconds_;  // the whole search's time: what the answer cost
+    result.cpu_seconds = cpu_seconds_;
+    result.continuation = std::move(path_);
+    if (result.continuation.size() > 1)
+      result.reason += "; the iterations of the last of " + std::to_string(result.continuation.size()) +
+                       " continuation stages, " + std::to_string(result.total_iterations()) + " over all";
+    return result;
+  }
+
+  static constexpr double kLargestStiffStep = 1e6;  // the largest h a request may give
+
+  const Equation<G>& eq_;
+  const SolverOptions& opt_;
+  const TraceCallback& cb_;
+  Solve solve_;
+  const double h_;
+  std::vector<ContinuationStage> path_;
+  double result_h_ = 0.0;  // the h of the stage the answer comes from
+  double seconds_ = 0.0, cpu_seconds_ = 0.0;
+};
+
+template <LieGroup G, class Solve>
+SolveResult continued(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb, Solve solve) {
+  return ContinuationSearch<G, Solve>(eq, opt, cb, std::move(solve)).run();
 }
 
 }  // namespace lienewton

@@ -269,6 +269,14 @@ class Equation {
   // The z rule: the given z replaced by its orthogonal polar factor; how far that moved it (Frobenius).
   double z_adjustment() const { return z_adjustment_; }
 
+  // The identity of z's component of O(N): I when det z > 0, else diag(-1, 1, ..., 1). An equilibrium (g = 0) of
+  // both paper problems, where continuation from the stiff end starts (continuation.hpp).
+  Element component_identity() const {
+    Element j = group_.identity();
+    if (z_.determinant() < 0) j.row(0) *= -1.0;
+    return j;
+  }
+
   // Where the solvers start: y_0 = z, as section 5 does, unless start_at(y0) moved it (a request's y0, a
   // basin map's pixel). y0 must lie in z SO(N); it is replaced by its polar factor, as z is.
   const Element& start() const { return y0_; }

@@ -22,8 +22,8 @@ SolveResult run_directly(Method method, const Equation<G>& eq, const SolverOptio
 template <LieGroup G>
 SolveResult run_method(Method method, const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb) {
   if (!opt.continuation || !eq.is_implicit_euler()) return run_directly(method, eq, opt, cb);
-  return continued(eq, cb, [&](const Equation<G>& stage, const TraceCallback& stage_cb) {
-    return run_directly(method, stage, opt, stage_cb);
+  return continued(eq, opt, cb, [&](const Equation<G>& stage, const SolverOptions& o, const TraceCallback& stage_cb) {
+    return run_directly(method, stage, o, stage_cb);
   });
 }
 

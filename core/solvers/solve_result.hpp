@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/options.hpp"
 #include "core/status.hpp"
 
 namespace lienewton {
@@ -32,13 +33,15 @@ struct TraceRecord {
   double distance_to_pi() const { return std::numbers::pi - angle; }
 };
 
-// One stage of a continued solve (solvers/continuation.hpp): the equation at step size h, started at the previous
-// stage's solution.
+// One stage of a continued solve (solvers/continuation.hpp): the equation at step size h, started where `start`
+// says, solved with `globalization`.
 struct ContinuationStage {
   double h = 0;
   Status status = Status::max_iterations;
   int iterations = 0;
   double residual = 0;  // ||f(y)|| at this stage's h of the stage's returned y
+  std::string_view start = "start";  // "start" (z or y0), "root" (the previous stage's), "identity" (of z's component)
+  Globalization globalization = Globalization::none;
 };
 
 struct SolveResult {
