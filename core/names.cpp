@@ -12,7 +12,7 @@ constexpr std::pair<Status, std::string_view> kStatusNames[] = {
     {Status::diverged, "diverged"},     {Status::non_finite, "non_finite"},
     {Status::left_log_domain, "left_log_domain"}, {Status::singular_differential, "singular_differential"},
     {Status::stagnated, "stagnated"},   {Status::off_branch, "off_branch"},
-    {Status::local_minimum, "local_minimum"},
+    {Status::local_minimum, "local_minimum"},   {Status::no_descent, "no_descent"},
     {Status::cancelled, "cancelled"}};
 constexpr std::pair<ProblemKind, std::string_view> kProblemNames[] = {
     {ProblemKind::paper_linear, "paper-linear"}, {ProblemKind::paper_sine, "paper-sine"},

@@ -16,6 +16,8 @@ enum class Status {
   off_branch,             // y = z exp(h g(y)) holds to rounding, but h g(y) has an angle beyond pi
   local_minimum,          // globalised Newton: ||D^T f|| fell to rounding while ||f|| did not (a stationary
                           // point of 1/2 ||f||^2 that is no root)
+  no_descent,             // globalised Newton: no step, however short, decreases 1/2 ||f||^2 although ||f|| is far
+                          // above its floor and ||D^T f|| is not small: phi is not smooth there (log's cut at angle pi)
   cancelled,              // the caller's callback asked to stop (client left, deadline passed)
 };
 
@@ -23,6 +25,7 @@ std::string_view to_string(Status status);
 std::optional<Status> status_from_string(std::string_view name);
 inline constexpr Status kAllStatuses[] = {
     Status::converged, Status::max_iterations, Status::diverged,  Status::non_finite, Status::left_log_domain,
-    Status::singular_differential, Status::stagnated, Status::off_branch, Status::local_minimum, Status::cancelled};
+    Status::singular_differential, Status::stagnated, Status::off_branch, Status::local_minimum, Status::no_descent,
+    Status::cancelled};
 
 }  // namespace lienewton

@@ -37,6 +37,7 @@ Color status_color(Status status) {
     case Status::stagnated: return {158, 218, 229, 255};           // pale cyan
     case Status::off_branch: return {247, 182, 210, 255};          // pink
     case Status::local_minimum: return {188, 189, 34, 255};        // olive
+    case Status::no_descent: return {107, 110, 207, 255};          // slate blue
     case Status::cancelled: return {120, 120, 120, 255};           // mid gray: not computed
   }
   return kNoValueColor;

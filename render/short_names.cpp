@@ -40,6 +40,7 @@ std::string_view short_name(Status status) {
     case Status::stagnated: return "stagnated";
     case Status::off_branch: return "off branch";
     case Status::local_minimum: return "local minimum";
+    case Status::no_descent: return "no descent";
     case Status::cancelled: return "cancelled";
   }
   return "?";

@@ -92,6 +92,8 @@ Words words(Status s) {
     case Status::off_branch: return {"off branch", "off branch", "solved, but h g(y) beyond angle \u03c0 (off branch)"};
     case Status::local_minimum:
       return {"local minimum", "local min", "stationary point of \u00bd\u2016f\u2016\u00b2 that is no root (globalised)"};
+    case Status::no_descent:
+      return {"no descent", "no descent", "no step decreases \u00bd\u2016f\u2016\u00b2 (globalised; \u03c6 not smooth there)"};
     case Status::cancelled: return {"cancelled", "cancelled", "cancelled, not computed"};
   }
   return {};

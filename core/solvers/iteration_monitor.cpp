@@ -124,6 +124,9 @@ std::string reason_for(Status status, const SolveResult& r) {
              "log(z^-1 y) != h g(y) and ||f(y)|| = " + format_number(r.residual);
     case Status::local_minimum:
       return "a stationary point of 1/2 ||f||^2 that is no root: ||f(y)|| = " + format_number(r.residual) + at;
+    case Status::no_descent:
+      return "no step decreases 1/2 ||f||^2 although ||f(y)|| = " + format_number(r.residual) + at +
+             " is far above its floor and no stationary point: phi is not smooth there";
     case Status::cancelled: return "cancelled by the caller";
   }
   return "unknown";

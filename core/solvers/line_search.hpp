@@ -52,9 +52,9 @@ class LineSearch {
       if (!s.allFinite() || !(slope < 0.0)) break;
       if (auto a = backtrack(model, s, slope, "levenberg-marquardt", floor)) return *a;
     }
-    return Advance<Chart>::stop(Status::stagnated, "no step decreases 1/2 ||f||^2 (||f|| = " +
-                                                       format_number(model.point().f.norm()) + ", ||D^T f|| = " +
-                                                       format_number(gradient) + ")");
+    return Advance<Chart>::stop(no_decrease_status(model.point().f.norm(), floor),
+                                "no step decreases 1/2 ||f||^2 (||f|| = " + format_number(model.point().f.norm()) +
+                                    ", ||D^T f|| = " + format_number(gradient) + ")");
   }
 
  private:

@@ -78,6 +78,13 @@ inline std::optional<double> stationarity_threshold(Differential d) {
   return 64.0 * std::sqrt(std::numeric_limits<double>::epsilon());
 }
 
+// How a globalised step that finds no decrease of phi ends: stagnated when ||f|| is within 16x its rounding floor
+// (no decrease is left to find), else no_descent: far above the floor, phi is not smooth at the iterate (the jump
+// of log at angle pi) or D is not its derivative.
+inline Status no_decrease_status(double f, double floor) {
+  return f <= 16.0 * floor ? Status::stagnated : Status::no_descent;
+}
+
 // The local_minimum detail when the model's iterate is a stationary point of phi that is no root: ||f|| above
 // tol and well above its rounding floor, ||D^T f|| at rounding. Empty otherwise.
 template <LieGroup G, class Chart>

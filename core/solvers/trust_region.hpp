@@ -65,9 +65,10 @@ class TrustRegion {
       }
       if (!(radius_ > 0.0) || !s.allFinite()) break;
     }
-    return Advance<Chart>::stop(Status::stagnated, "the trust radius shrank to " + format_number(radius_) +
-                                                       " without a decrease of 1/2 ||f||^2 (||f|| = " +
-                                                       format_number(model.point().f.norm()) + ")");
+    return Advance<Chart>::stop(no_decrease_status(model.point().f.norm(), floor),
+                                "the trust radius shrank to " + format_number(radius_) +
+                                    " without a decrease of 1/2 ||f||^2 (||f|| = " +
+                                    format_number(model.point().f.norm()) + ")");
   }
 
  private:

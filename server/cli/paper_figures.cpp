@@ -51,6 +51,7 @@ char status_code(Status status) {
     case Status::stagnated: return 'S';
     case Status::off_branch: return 'B';
     case Status::local_minimum: return 'P';
+    case Status::no_descent: return 'N';
     case Status::cancelled: return '-';
   }
   return '?';
@@ -77,7 +78,7 @@ std::string figure_tables(const SweepResult& sweep, ProblemKind problem, Differe
     out << '\n';
   }
   out << "Codes: M max_iterations, D diverged, F non_finite, L left_log_domain, X singular_differential, "
-         "S stagnated, B off_branch, P local_minimum.\n\n";
+         "S stagnated, B off_branch, P local_minimum, N no_descent.\n\n";
   return out.str();
 }
 

@@ -131,6 +131,35 @@ TEST_P(LocalMinimum, StationaryPointWithoutRootIsReportedWithItsNumbers) {
   EXPECT_NE(r.reason.find(format_number(least).substr(0, 4)), std::string::npos) << r.reason;
 }
 
+// f(y) = log(y) - b on SO(3) with ||b|| = 4 > pi has no root: along b's axis ||f|| = ||b|| - theta falls towards
+// the cut at theta = pi, where log jumps to the other side and ||f|| to ||b|| + pi. 1/2 ||f||^2 has no stationary
+// point there (||D^T f|| stays near ||b|| - pi), yet no step decreases it past the cut: the trust region shrinks
+// its radius to nothing at the cut and ends as no_descent (or left_log_domain, once within the log's margin of pi),
+// not as stagnated (which it reported before no_descent existed) or local_minimum, with the numbers true of the
+// returned y. (The line search creeps towards the cut with ever shorter steps until max_iterations.)
+class NoDescent : public ::testing::TestWithParam<Globalization> {};
+
+TEST_P(NoDescent, CutOfLogEndsTheSearchAsWhatItIs) {
+  const Eigen::Vector3d b = 4.0 * Eigen::Vector3d(0.6, 0.0, 0.8);
+  const SO3Group so3g;
+  auto f = [b](const Eigen::Matrix3d& y) -> Eigen::Vector3d { return so3::log(y) - b; };
+  auto df = [](const Eigen::Matrix3d& y, const Eigen::Vector3d& u) -> Eigen::Vector3d {
+    return so3::dexpinv(so3::log(y), u);  // d/dt log(y exp(t u)) at t = 0
+  };
+  const auto eq = Equation<SO3Group>::general(so3g, Eigen::Matrix3d::Identity(), f, df);
+  SolverOptions opt;
+  opt.globalization = GetParam();
+  const SolveResult r = newton_group(eq, opt);
+  ASSERT_TRUE(r.status == Status::no_descent || r.status == Status::left_log_domain) << r.reason;
+  const Eigen::Matrix3d y = r.y;
+  EXPECT_NEAR(r.residual, f(y).norm(), 1e-12);
+  EXPECT_NEAR(r.residual, b.norm() - std::numbers::pi, 1e-6);  // at the cut, from inside
+  EXPECT_GE(r.residual, 1e6 * r.floor);
+  EXPECT_NEAR(so3::angle(y), std::numbers::pi, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(TrustRegion, NoDescent, ::testing::Values(Globalization::trust_region));
+
 INSTANTIATE_TEST_SUITE_P(
     StrategiesAndDifferentials, LocalMinimum,
     ::testing::Values(std::pair{Globalization::line_search, Differential::exact},

@@ -215,7 +215,7 @@ TEST(Heatmap, PngShowsNoSwatchOfAnAbsentClass) {
     EXPECT_EQ(image.count_not(kWhite, after_x - 6, after_y - 6, after_x + 6, after_y + 6), 0);
   }
   for (Status s : {Status::non_finite, Status::singular_differential, Status::stagnated, Status::off_branch,
-                   Status::local_minimum, Status::cancelled}) {
+                   Status::local_minimum, Status::no_descent, Status::cancelled}) {
     // A swatch or a cell is a solid block; single pixels of a grey can be antialiased text.
     const Color absent = status_color(s);
     int blocks = 0;
