@@ -54,7 +54,8 @@ class LineSearch {
     }
     return Advance<Chart>::stop(no_decrease_status(model.point().f.norm(), floor),
                                 "no step decreases 1/2 ||f||^2 (||f|| = " + format_number(model.point().f.norm()) +
-                                    ", ||D^T f|| = " + format_number(gradient) + ")");
+                                    ", ||D^T f|| = " + format_number(gradient) + ", " +
+                                    angle_detail(model.point().angle) + ")");
   }
 
  private:

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -83,6 +84,11 @@ inline std::optional<double> stationarity_threshold(Differential d) {
 // of log at angle pi) or D is not its derivative.
 inline Status no_decrease_status(double f, double floor) {
   return f <= 16.0 * floor ? Status::stagnated : Status::no_descent;
+}
+
+// Where the iterate is with respect to log's cut, for a reason: "z^-1 y at rotation angle pi - 1e-10".
+inline std::string angle_detail(double angle) {
+  return "z^-1 y at rotation angle pi - " + format_number(std::numbers::pi - angle);
 }
 
 // The local_minimum detail when the model's iterate is a stationary point of phi that is no root: ||f|| above

@@ -68,7 +68,8 @@ class TrustRegion {
     return Advance<Chart>::stop(no_decrease_status(model.point().f.norm(), floor),
                                 "the trust radius shrank to " + format_number(radius_) +
                                     " without a decrease of 1/2 ||f||^2 (||f|| = " +
-                                    format_number(model.point().f.norm()) + ")");
+                                    format_number(model.point().f.norm()) + ", " +
+                                    angle_detail(model.point().angle) + ")");
   }
 
  private:
