@@ -11,8 +11,8 @@
 //      while no stage fails: h_0 <= 1/16 and every stage doubles h;
 //   4. the path from the stiff end: as h -> infinity the roots of (1.1) tend to equilibria of y' = y g(y)
 //      (g(y) = 0), and the component identity J of z (I, or diag(-1, 1, ..., 1) when det z < 0) is one for
-//      both paper problems. Solve at h from J; failing that at 2h, 4h, ..., 2^kStiffDoublings h from J until
-//      a root is found, then halve back down to h, each stage from the previous root.
+//      both paper problems. Solve at h from J (as in 1. and 2.); failing that at 2h, 4h, ..., 2^kStiffDoublings h
+//      from J until a root is found, then halve back down to h, each stage from the previous root.
 // A path's stage that fails shrinks its ratio to the square root (2, 1.41, 1.19, ... going up; 1/2, 0.71, ...
 // coming down) and is retried that much beyond the last root (a failed first stage of the path from 0: at a
 // quarter of its h). After kMaxFailedStages failures, a ratio within 1% of 1 or kMaxContinuationStages stages,
@@ -70,14 +70,8 @@ class ContinuationSearch {
       : eq_(eq), opt_(opt), cb_(cb), solve_(std::move(solve)), h_(eq.h()) {}
 
   SolveResult run() {
-    SolveResult r = stage(h_, nullptr, kStartGiven, opt_);  // 1.
+    SolveResult r = try_at_h(nullptr, kStartGiven);  // 1. and 2.
     if (settled(r)) return finish(std::move(r));
-    if (opt_.globalization != Globalization::none) {  // 2.
-      SolverOptions plain = opt_;
-      plain.globalization = Globalization::none;
-      r = stage(h_, nullptr, kStartGiven, plain);
-      if (settled(r)) return finish(std::move(r));
-    }
     if (first_continuation_step(h_) < h_) {  // 3. (below kContinuationStart there is no path from 0)
       r = walk(std::nullopt, 0.0, first_continuation_step(h_), 2.0);
       if (settled(r)) return finish(std::move(r));
@@ -100,6 +94,16 @@ class ContinuationSearch {
   // A root to go on from: converged, or stagnated at its rounding floor.
   static bool is_root(const SolveResult& r) {
     return r.status == Status::converged || r.status == Status::stagnated;
+  }
+
+  // The solve at h from start (null: where eq starts) with the requested options and, with a globalization,
+  // when that fails, with the paper's full steps (plain Newton crosses log's cut where a descent method will not).
+  SolveResult try_at_h(const Element* start, const char* start_name) {
+    SolveResult r = stage(h_, start, start_name, opt_);
+    if (settled(r) || opt_.globalization == Globalization::none) return r;
+    SolverOptions plain = opt_;
+    plain.globalization = Globalization::none;
+    return stage(h_, start, start_name, plain);
   }
 
   // One stage: eq at step h from start (null: where eq starts), recorded on the path.
@@ -147,7 +151,7 @@ class ContinuationSearch {
   // 4. of the file comment; last: the given start's last try at h, returned when this path finds no root.
   SolveResult from_stiff_end(SolveResult last) {
     const Element j = eq_.component_identity();
-    SolveResult r = stage(h_, &j, kStartIdentity, opt_);
+    SolveResult r = try_at_h(&j, kStartIdentity);
     if (settled(r)) return r;
     for (int k = 1; k <= kStiffDoublings; ++k) {
       const double big_h = std::ldexp(h_, k);
