@@ -188,21 +188,23 @@ const Cell kStiff[] = {{ProblemKind::paper_sine, 5, 1024.0, Method::newton_group
 INSTANTIATE_TEST_SUITE_P(StiffEnd, ContinuedCell, ::testing::ValuesIn(kStiff));
 
 TEST(Continuation, StiffEndStartsAtTheIdentityWhenThePathFromZeroFails) {
+  int from_stiff_end = 0;
   for (const Cell& c : kStiff) {
     const SolveResult r = solve(request(c.problem, c.n, c.h, c.method, true));
     ASSERT_EQ(r.status, Status::converged) << r.reason;
     const auto from_identity = std::find_if(r.continuation.begin(), r.continuation.end(),
                                             [](const ContinuationStage& s) { return s.start == "identity"; });
-    if (r.continuation.size() > 1 && r.continuation.back().start != "start") {  // the tries from z failed
-      ASSERT_NE(from_identity, r.continuation.end()) << "N = " << c.n << " h = " << c.h;
-      EXPECT_EQ(from_identity->h, c.h);  // first at h itself, then at 2h, 4h, ... and back down from a root
-      for (auto s = from_identity; s != r.continuation.end(); ++s) {
-        EXPECT_TRUE(s->start == "identity" || s->start == "root") << s->start;
-        EXPECT_GE(s->h, c.h);
-        EXPECT_LE(s->h, 16.0 * c.h);
-      }
+    if (from_identity == r.continuation.end()) continue;  // a try from z converged (another build's rounding)
+    ++from_stiff_end;
+    EXPECT_NE(r.continuation.front().status, Status::converged);
+    EXPECT_EQ(from_identity->h, c.h);  // first at h itself, then at 2h, 4h, ... and back down from a root
+    for (auto s = from_identity; s != r.continuation.end(); ++s) {
+      EXPECT_TRUE(s->start == "identity" || s->start == "root") << s->start;
+      EXPECT_GE(s->h, c.h);
+      EXPECT_LE(s->h, 16.0 * c.h);
     }
   }
+  EXPECT_GE(from_stiff_end, 2);  // Release: all 4; other rounding (ASan) lets a try from z converge on some
 }
 
 // With a globalization the second try at h is the paper's full-step Newton from the same start: a cell the plain
