@@ -130,7 +130,7 @@ class ContinuationSearch {
         final_try = true;
       if (final_try) target = h_;
       SolveResult r = root ? stage(target, &*root, kStartRoot, opt_) : stage(target, nullptr, kStartGiven, opt_);
-      if (stopped(r) || final_try || (target == h_ && r.status == Status::converged)) return r;
+      if (settled(r) || final_try) return r;
       if (is_root(r)) {
         root = Element(r.y);
         reached = target;
@@ -142,7 +142,7 @@ class ContinuationSearch {
         target /= 4.0;
         continue;
       }
-      ratio = ratio > 1.0 ? std::sqrt(ratio) : 1.0 / std::sqrt(1.0 / ratio);
+      ratio = ratio > 1.0 ? std::sqrt(ratio) : 1.0 / std::sqrt(1.0 / ratio);  // coming down: 1 / the ratio going up
       if (std::abs(std::log(ratio)) < std::log(kSmallestContinuationRatio)) final_try = true;
       target = toward_h(ratio * reached);
     }
