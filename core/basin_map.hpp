@@ -222,4 +222,10 @@ BasinResult basin_map(const Equation<G>& eq, const BasinPlane& plane, const Basi
   return BasinMap<G>(eq, plane, on_row, farm).run();
 }
 
+// The two rotation groups' maps are compiled once, in basins.cpp (as the solvers are: rotation_instances.hpp).
+extern template BasinResult basin_map<SO3Group>(const Equation<SO3Group>&, const BasinPlane&,
+                                                const BasinRowCallback&, const WorkFarm*);
+extern template BasinResult basin_map<SONGroup>(const Equation<SONGroup>&, const BasinPlane&,
+                                                const BasinRowCallback&, const WorkFarm*);
+
 }  // namespace lienewton

@@ -44,6 +44,11 @@ std::unique_ptr<VectorField<G>> field_of(const G& group, const BasinRequest& req
 
 }  // namespace
 
+template BasinResult basin_map<SO3Group>(const Equation<SO3Group>&, const BasinPlane&, const BasinRowCallback&,
+                                         const WorkFarm*);
+template BasinResult basin_map<SONGroup>(const Equation<SONGroup>&, const BasinPlane&, const BasinRowCallback&,
+                                         const WorkFarm*);
+
 std::vector<double> basin_axis(int size, double radius) {
   std::vector<double> axis(static_cast<std::size_t>(size));
   for (int i = 0; i < size; ++i) axis[static_cast<std::size_t>(i)] = radius * (2.0 * i + 1.0 - size) / size;

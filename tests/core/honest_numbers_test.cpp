@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include "core/groups/so3.hpp"
 #include "core/groups/son.hpp"

@@ -53,3 +53,10 @@ struct RnGroup {
 static_assert(LieGroup<RnGroup>);
 
 }  // namespace lienewton
+
+#include "core/solvers/run_method.hpp"
+
+// The solvers on R^n are compiled once, in rn_instances.cpp, for the tests that solve on it.
+namespace lienewton {
+LIENEWTON_SOLVERS_ON(extern, RnGroup)
+}  // namespace lienewton
