@@ -124,7 +124,7 @@ BasinLayout layout_basins(const BasinResult& map, int width, int height) {
   for (const auto& e : l.legend) label = std::max(label, text_width(e.label, TextSize::small));
   l.legend_column_width = kSwatch + 6 + label + 16;
   l.legend_row_height = small + 5;
-  // Horizontal: [b title][b ticks][panels with gaps][margin]; vertical: [title][subtitle][panels][a ticks][a
+  // Horizontal: [b title][b ticks][panels with gaps][margin or half a tick]; vertical: [title][subtitle][panels][a ticks][a
   // title][shade note][legend].
   const int tick_width = text_width("-0.00", TextSize::small);
   // Neighbouring panels' end ticks (r of one, -r of the next) are centred on their edges: the gap holds both.
@@ -132,7 +132,9 @@ BasinLayout layout_basins(const BasinResult& map, int width, int height) {
   l.left = kMargin + text_width("b", TextSize::small) + 8 + tick_width + kTick + 3;
   l.top = kMargin + large + 6 + small + 8;
   const int below = kTick + 4 + small + 6 + small + 10 + small + 10;
-  const int fixed_width = l.left + (l.panels - 1) * l.gap + kMargin;
+  // The last panel's end tick is centred on its right edge too: the right margin holds half of it.
+  const int right = std::max(kMargin, tick_width / 2 + 4);
+  const int fixed_width = l.left + (l.panels - 1) * l.gap + right;
   const int grid = static_cast<int>(map.grid.axis.size());
   auto legend_rows = [&](int w) {
     const int columns = std::max(1, (w - 2 * kMargin) / l.legend_column_width);
