@@ -34,6 +34,8 @@ constexpr std::pair<Globalization, std::string_view> kGlobalizationNames[] = {
     {Globalization::trust_region, "trust-region"}};
 constexpr std::pair<Predictor, std::string_view> kPredictorNames[] = {
     {Predictor::none, "none"}, {Predictor::lie_euler, "lie-euler"}};
+constexpr std::pair<StageStart, std::string_view> kStageStartNames[] = {
+    {StageStart::given, "start"}, {StageStart::root, "root"}, {StageStart::identity, "identity"}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {
@@ -59,6 +61,7 @@ std::string_view to_string(LinearSolver v) { return name_of(kLinearSolverNames, 
 std::string_view to_string(Stopping v) { return name_of(kStoppingNames, v); }
 std::string_view to_string(Globalization v) { return name_of(kGlobalizationNames, v); }
 std::string_view to_string(Predictor v) { return name_of(kPredictorNames, v); }
+std::string_view to_string(StageStart v) { return name_of(kStageStartNames, v); }
 std::optional<Status> status_from_string(std::string_view s) { return value_of(kStatusNames, s); }
 std::optional<ProblemKind> problem_from_string(std::string_view s) { return value_of(kProblemNames, s); }
 std::optional<Method> method_from_string(std::string_view s) { return value_of(kMethodNames, s); }

@@ -28,6 +28,9 @@ enum class Globalization { none, line_search, trust_region };
 // none = at Z_i, as the paper starts at y_0 = z; lie-euler = at the explicit Lie-Euler value Z_i exp(h a_ii g(Z_i)),
 // whose residual h a_ii (g(Z_i) - g(Y)) is O(h^2) instead of O(h) (core/integrate.cpp).
 enum class Predictor { none, lie_euler };
+// Where a continuation stage (core/solvers/continuation.hpp) starts its iteration: given = the request's start (z
+// or y0), root = the previous stage's root, identity = the identity of z's component.
+enum class StageStart { given, root, identity };
 
 std::string_view to_string(ProblemKind);
 std::string_view to_string(Method);
@@ -37,6 +40,7 @@ std::string_view to_string(LinearSolver);
 std::string_view to_string(Stopping);
 std::string_view to_string(Globalization);
 std::string_view to_string(Predictor);
+std::string_view to_string(StageStart);
 std::optional<ProblemKind> problem_from_string(std::string_view);
 std::optional<Method> method_from_string(std::string_view);
 std::optional<Differential> differential_from_string(std::string_view);
@@ -57,5 +61,6 @@ inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algeb
 inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,
                                                        Globalization::trust_region};
 inline constexpr Predictor kAllPredictors[] = {Predictor::none, Predictor::lie_euler};
+inline constexpr StageStart kAllStageStarts[] = {StageStart::given, StageStart::root, StageStart::identity};
 
 }  // namespace lienewton

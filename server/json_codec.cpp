@@ -702,7 +702,7 @@ json to_json(const SolveResult& r, bool include_iterates) {
     for (const ContinuationStage& s : r.continuation)
       stages.push_back(json{{"h", finite_or_null(s.h)}, {"status", std::string(to_string(s.status))},
                             {"iterations", s.iterations}, {"residual", finite_or_null(s.residual)},
-                            {"start", std::string(s.start)},
+                            {"start", std::string(to_string(s.start))},
                             {"globalization", std::string(to_string(s.globalization))}});
     j["continuation"] = json{{"stages", std::move(stages)}, {"total_iterations", r.total_iterations()}};
   }

@@ -138,7 +138,7 @@ json schemas() {
                                                                                    {"status", status},
                                                                                    {"iterations", integer("")},
                                                                                    {"residual", nullable_number("||f(y)|| at this stage's h")},
-                                                                                   {"start", json{{"type", "string"}, {"enum", {"start", "root", "identity"}}, {"description", "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component"}}},
+                                                                                   {"start", enum_schema(kAllStageStarts, "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component")},
                                                                                    {"globalization", globalization}},
                                                                                   {}, false))},
                                                       {"total_iterations", integer("summed over the stages")}},

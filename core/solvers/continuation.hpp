@@ -11,8 +11,10 @@
 //      while no stage fails: h_0 <= 1/16 and every stage doubles h;
 //   4. the path from the stiff end: as h -> infinity the roots of (1.1) tend to equilibria of y' = y g(y)
 //      (g(y) = 0), and the component identity J of z (I, or diag(-1, 1, ..., 1) when det z < 0) is one for
-//      both paper problems. Solve at h from J (as in 1. and 2.); failing that at 2h, 4h, ..., 2^kStiffDoublings h
-//      from J until a root is found, then halve back down to h, each stage from the previous root.
+//      both paper problems. Solve at h from J; failing that at 2h, 4h, ..., 2^kStiffDoublings h from J until a
+//      root is found, then halve back down to h, each stage from the previous root.
+// Every stage of 3. and 4. is tried as in 1. and 2.: with a globalization, a stage that finds no root is solved
+// again with full steps (a descent method stalls where the path of roots folds back; full steps jump on).
 // A path's stage that fails shrinks its ratio to the square root (2, 1.41, 1.19, ... going up; 1/2, 0.71, ...
 // coming down) and is retried that much beyond the last root (a failed first stage of the path from 0: at a
 // quarter of its h). After kMaxFailedStages failures, a ratio within 1% of 1 or kMaxContinuationStages stages,
@@ -70,7 +72,7 @@ class ContinuationSearch {
       : eq_(eq), opt_(opt), cb_(cb), solve_(std::move(solve)), h_(eq.h()) {}
 
   SolveResult run() {
-    SolveResult r = try_at_h(nullptr, kStartGiven);  // 1. and 2.
+    SolveResult r = try_at(h_, nullptr, StageStart::given);  // 1. and 2.
     if (settled(r)) return finish(std::move(r));
     if (first_continuation_step(h_) < h_) {  // 3. (below kContinuationStart there is no path from 0)
       r = walk(std::nullopt, 0.0, first_continuation_step(h_), 2.0);
@@ -80,10 +82,6 @@ class ContinuationSearch {
   }
 
  private:
-  static constexpr const char* kStartGiven = "start";  // where eq starts: z, or the request's y0
-  static constexpr const char* kStartRoot = "root";    // the previous stage's root
-  static constexpr const char* kStartIdentity = "identity";
-
   bool stopped(const SolveResult& r) const {
     return r.status == Status::cancelled || cancellation_requested();
   }
@@ -98,16 +96,18 @@ class ContinuationSearch {
 
   // The solve at h from start (null: where eq starts) with the requested options and, with a globalization,
   // when that fails, with the paper's full steps (plain Newton crosses log's cut where a descent method will not).
-  SolveResult try_at_h(const Element* start, const char* start_name) {
-    SolveResult r = stage(h_, start, start_name, opt_);
-    if (settled(r) || opt_.globalization == Globalization::none) return r;
+  // It fails at the requested h when it does not converge, at any other h when it finds no root to go on from.
+  SolveResult try_at(double h, const Element* start, StageStart start_name) {
+    SolveResult r = stage(h, start, start_name, opt_);
+    const bool enough = h == h_ ? settled(r) : stopped(r) || is_root(r);
+    if (enough || opt_.globalization == Globalization::none) return r;
     SolverOptions plain = opt_;
     plain.globalization = Globalization::none;
-    return stage(h_, start, start_name, plain);
+    return stage(h, start, start_name, plain);
   }
 
   // One stage: eq at step h from start (null: where eq starts), recorded on the path.
-  SolveResult stage(double h, const Element* start, const char* start_name, const SolverOptions& o) {
+  SolveResult stage(double h, const Element* start, StageStart start_name, const SolverOptions& o) {
     Equation<G> e = eq_.at_step(h);
     if (start) e.start_at(*start);
     SolveResult r = solve_(e, o, tagged_with_step(cb_, h));
@@ -129,7 +129,7 @@ class ContinuationSearch {
       if (static_cast<int>(path_.size()) - first + 1 >= kMaxContinuationStages || failures >= kMaxFailedStages)
         final_try = true;
       if (final_try) target = h_;
-      SolveResult r = root ? stage(target, &*root, kStartRoot, opt_) : stage(target, nullptr, kStartGiven, opt_);
+      SolveResult r = root ? try_at(target, &*root, StageStart::root) : try_at(target, nullptr, StageStart::given);
       if (settled(r) || final_try) return r;
       if (is_root(r)) {
         root = Element(r.y);
@@ -151,12 +151,12 @@ class ContinuationSearch {
   // 4. of the file comment; last: the given start's last try at h, returned when this path finds no root.
   SolveResult from_stiff_end(SolveResult last) {
     const Element j = eq_.component_identity();
-    SolveResult r = try_at_h(&j, kStartIdentity);
+    SolveResult r = try_at(h_, &j, StageStart::identity);
     if (settled(r)) return r;
     for (int k = 1; k <= kStiffDoublings; ++k) {
       const double big_h = std::ldexp(h_, k);
       if (big_h > kLargestStiffStep) break;
-      SolveResult up = stage(big_h, &j, kStartIdentity, opt_);
+      SolveResult up = try_at(big_h, &j, StageStart::identity);
       if (stopped(up)) return up;
       if (is_root(up)) return walk(Element(up.y), big_h, std::max(h_, big_h / 2), 0.5);
     }

@@ -40,7 +40,7 @@ struct ContinuationStage {
   Status status = Status::max_iterations;
   int iterations = 0;
   double residual = 0;  // ||f(y)|| at this stage's h of the stage's returned y
-  std::string_view start = "start";  // "start" (z or y0), "root" (the previous stage's), "identity" (of z's component)
+  StageStart start = StageStart::given;
   Globalization globalization = Globalization::none;
 };
 
