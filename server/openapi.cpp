@@ -74,8 +74,9 @@ json schemas() {
                       "fails, reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is "
                       "retried at the geometric mean of its h and the last reached one), each stage started at the "
                       "previous root; failing that, from the stiff end: solve from the identity of z's component at h, "
-                      "else at 2h, ..., 16h and halve back to h from the root found. The result's continuation lists "
-                      "the stages, and only a solve at h decides the status"}};
+                      "else at 2h, ..., 16h and halve back to h from the root found. With a globalization every stage "
+                      "that finds no root is solved again from the same start with full steps. The result's "
+                      "continuation lists the stages, and only a solve at h decides the status"}};
   json predictor = enum_schema(kAllPredictors,
                                "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
                                "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "

@@ -37,12 +37,13 @@ std::string format_number(double x) {
 
 IterationMonitor::IterationMonitor(const SolverOptions& options, const TraceCallback& callback)
     : options_(options), callback_(callback), start_(std::chrono::steady_clock::now()),
-      cpu_start_(thread_cpu_seconds()) {
+      cpu_start_(options.timed ? thread_cpu_seconds() : 0.0) {
   trace_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
   stops_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
 }
 
 double IterationMonitor::solver_cpu_seconds() const {
+  if (!options_.timed) return 0.0;  // untimed: no clock reads at all (see SolverOptions::timed)
   return thread_cpu_seconds() - cpu_start_ - callback_cpu_seconds_;
 }
 

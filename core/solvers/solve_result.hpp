@@ -60,7 +60,7 @@ struct SolveResult {
   Eigen::MatrixXd y;            // the returned iterate y_iterate (never NaN)
   std::vector<TraceRecord> trace;
   double seconds = 0;           // wall time
-  double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded)
+  double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded; 0 untimed)
   std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
   // continuation only: every stage, the last at the requested h (whose solve is this result's status, trace, y)
   std::vector<ContinuationStage> continuation;

@@ -91,6 +91,22 @@ TEST(Solve, SolverCpuTimeGrowsAlongTheTraceAndExcludesTheCallback) {
   EXPECT_LT(r.cpu_seconds, 0.5 * burnt) << "the callback's CPU time leaked into the solver's";
 }
 
+// Untimed (sweeps, basin maps) the monitor reads no CPU clock: the result and its records carry no CPU time, the
+// same iterate and status as a timed solve, and the wall time of the whole solve.
+TEST(Solve, UntimedSolveReadsNoCpuClockAndFindsTheSameIterate) {
+  SolveRequest req = paper_linear(6, Method::newton_group, Differential::exact);
+  const SolveResult timed = solve(req);
+  req.solver.timed = false;
+  const SolveResult r = solve(req);
+  ASSERT_EQ(r.status, Status::converged);
+  EXPECT_EQ(r.y, timed.y);
+  EXPECT_EQ(r.iterations, timed.iterations);
+  EXPECT_EQ(r.cpu_seconds, 0.0);
+  for (const TraceRecord& t : r.trace) EXPECT_EQ(t.cpu_seconds, 0.0);
+  EXPECT_GT(r.seconds, 0.0);
+  EXPECT_GT(timed.cpu_seconds, 0.0);
+}
+
 TEST(Solve, LastAllowedIterateIsStillTested) {
   SolveRequest req = paper_linear(4, Method::newton_group, Differential::exact);
   const int needed = solve(req).iterations;
