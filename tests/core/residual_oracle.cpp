@@ -30,10 +30,10 @@ Eigen::MatrixXd oracle_exp(const Eigen::MatrixXd& a) { return a.exp(); }
 Oracle oracle(ProblemKind problem, double h, const Eigen::MatrixXd& z, const Eigen::MatrixXd& y) {
   const Eigen::MatrixXd w = h * oracle_g(problem, y);
   const Eigen::MatrixXd zty = z.transpose() * y;
-  const Eigen::MatrixXd log_zty = zty.log();
+  const Eigen::MatrixXd log_zty = oracle_log(zty);
   Oracle o;
   o.residual = (log_zty - w).norm() / std::sqrt(2.0);
-  o.defect = (y - z * w.exp()).norm();
+  o.defect = (y - z * oracle_exp(w)).norm();
   o.angle = Eigen::JacobiSVD<Eigen::MatrixXd>(w).singularValues()(0);
   return o;
 }
