@@ -42,6 +42,13 @@ double one_minus_cos_over_t2(double t) {
   return 2.0 * s * s;
 }
 
+Rodrigues rodrigues(double t) {
+  if (t < kUnderflowLimit) return {sinc(t), one_minus_cos_over_t2(t)};
+  const double s = std::sin(0.5 * t), c = std::cos(0.5 * t);  // sin t = 2 s c, 1 - cos t = 2 s^2
+  const double s_over_t = s / t;
+  return {2.0 * s_over_t * c, 2.0 * s_over_t * s_over_t};
+}
+
 double t_minus_sin_over_t3(double t) {
   if (t < kSeriesLimit) return horner_in_t2(kCSeries, t * t);
   return (t - std::sin(t)) / (t * t * t);
@@ -55,7 +62,7 @@ double dexpinv_coefficient(double t) {
 Vec log(const Mat& r) {
   const double c = 0.5 * (r.trace() - 1.0);
   const Vec s = vee(r);  // sin(t) * axis
-  const double sn = s.stableNorm();  // norm() would underflow to 0 below angle ~1e-154
+  const double sn = safe_norm(s);
   const double t = std::atan2(sn, c);
   if (c > -0.5) {  // t < 2pi/3: sin t >= 0.86, the antisymmetric part determines the axis well
     if (sn == 0.0) return Vec::Zero();

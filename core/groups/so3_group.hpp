@@ -37,11 +37,11 @@ struct SO3Group {
   Spectral log(const Element& r) const { return so3::checked_log(r); }  // throws LogDomainError
   Vector log_vector(const Element& r, double& angle) const {
     const Vector v = so3::checked_log(r);
-    angle = v.stableNorm();  // norm() underflows to 0 below |v| ~ 1e-154
+    angle = so3::safe_norm(v);
     return v;
   }
   Vector vector(const Spectral& s) const { return s; }
-  double angle(const Spectral& s) const { return s.stableNorm(); }
+  double angle(const Spectral& s) const { return so3::safe_norm(s); }
   Vector dexp(const Spectral& s, const Vector& u) const { return so3::dexp(s, u); }
   Vector dexpinv(const Spectral& s, const Vector& u) const { return so3::dexpinv(s, u); }
   Operator dexp_matrix(const Spectral& s) const { return so3::dexp_matrix(s); }

@@ -88,6 +88,8 @@ TEST(SO3Coefficients, WithinFourUlpOfLongDoubleReference) {
       {"one_minus_cos_over_t2", so3::one_minus_cos_over_t2, ref_one_minus_cos_over_t2},
       {"t_minus_sin_over_t3", so3::t_minus_sin_over_t3, ref_t_minus_sin_over_t3},
       {"dexpinv_coefficient", so3::dexpinv_coefficient, ref_dexpinv_coefficient},
+      {"rodrigues.a", [](double t) { return so3::rodrigues(t).a; }, ref_sinc},
+      {"rodrigues.b", [](double t) { return so3::rodrigues(t).b; }, ref_one_minus_cos_over_t2},
   };
   const auto ts = sweep_points();
   for (const auto& c : coefficients) {
