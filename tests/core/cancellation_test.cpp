@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/cancellation.hpp"
+#include "core/gmres.hpp"
 #include "core/parallel_for.hpp"
 #include "core/reference_solution.hpp"
 #include "core/start_point.hpp"
@@ -73,6 +74,23 @@ TEST(Cancellation, ReferenceSolutionStopsAtOnce) {
   const CancellationToken late(Clock::now() - std::chrono::seconds(1), nullptr, nullptr);
   const CancellationScope scope(&late);
   EXPECT_THROW(reference_solution(ProblemKind::paper_sine, RigidBodyParams{}, y0, 100.0), Cancelled);
+}
+
+// GMRES polls inside its Arnoldi loop: a token cancelled during the third application of A stops it before the
+// fourth, where the system (diag(1..400), rtol 1e-14) would otherwise need hundreds of steps.
+TEST(Cancellation, GmresStopsInsideItsArnoldiLoop) {
+  std::atomic<bool> shutdown{false};
+  const CancellationToken token(Clock::time_point::max(), &shutdown, nullptr);
+  const CancellationScope scope(&token);
+  const Eigen::VectorXd diagonal = Eigen::VectorXd::LinSpaced(400, 1.0, 400.0);
+  int applications = 0;
+  auto apply = [&](const Eigen::VectorXd& v) {
+    if (++applications == 3) shutdown = true;
+    return Eigen::VectorXd(diagonal.cwiseProduct(v));
+  };
+  Eigen::VectorXd x;
+  EXPECT_THROW(gmres(apply, Eigen::VectorXd::Ones(400), x, 1e-14, 300), Cancelled);
+  EXPECT_EQ(applications, 3);
 }
 
 }  // namespace
