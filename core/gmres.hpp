@@ -20,7 +20,7 @@ struct GmresResult {
 
 // Solves A x = b from x = 0 until ||b - A x|| <= rtol ||b|| or max_iterations Arnoldi steps. Throws Cancelled
 // (cancellation.hpp) before any step once the current token is cancelled: at N = 64 under ASan the 300 steps
-// of one Newton system took about a second between the solver's own checks.
+// of one Newton system took up to a second between the solver's own checks.
 template <class Apply>
 GmresResult gmres(const Apply& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, int max_iterations) {
   const Eigen::Index q = b.size();

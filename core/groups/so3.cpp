@@ -31,11 +31,6 @@ double horner_in_t2(const std::array<double, K>& c, double t2) {
 
 }  // namespace
 
-double sinc(double t) {
-  if (t < kUnderflowLimit) return 1.0 - t * t / 6.0;
-  return std::sin(t) / t;
-}
-
 double one_minus_cos_over_t2(double t) {
   if (t < kUnderflowLimit) return 0.5 - t * t / 24.0;
   const double s = std::sin(0.5 * t) / t;
@@ -43,7 +38,7 @@ double one_minus_cos_over_t2(double t) {
 }
 
 Rodrigues rodrigues(double t) {
-  if (t < kUnderflowLimit) return {sinc(t), one_minus_cos_over_t2(t)};
+  if (t < kUnderflowLimit) return {1.0 - t * t / 6.0, one_minus_cos_over_t2(t)};
   const double s = std::sin(0.5 * t), c = std::cos(0.5 * t);  // sin t = 2 s c, 1 - cos t = 2 s^2
   const double s_over_t = s / t;
   return {2.0 * s_over_t * c, 2.0 * s_over_t * s_over_t};
