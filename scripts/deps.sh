@@ -2,7 +2,8 @@
 # Installs what is missing for lienewton. Shared by scripts/run.sh, scripts/test.sh, .ci/run and the
 # Dockerfile so that they cannot drift apart.
 #   scripts/deps.sh build   Debian packages to build and run the service
-#   scripts/deps.sh test    the above plus what the test suite needs (Chromium, clang, npm packages)
+#   scripts/deps.sh test    the above plus what the test suite needs (Chromium, nginx, npm packages)
+#   scripts/deps.sh fuzz    build packages plus clang and its libFuzzer runtime (tests/fuzz/run_fuzzer.sh)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 what="${1:-build}"
@@ -11,7 +12,7 @@ package_list() { grep -v '^\s*#' "$here/packages-$1.txt" | grep -v '^\s*$'; }
 
 missing=()
 lists=(build)
-[ "$what" = test ] && lists+=(test)
+[ "$what" = build ] || lists+=("$what")
 for list in "${lists[@]}"; do
   while read -r pkg; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")

@@ -3,9 +3,12 @@
 # bounded number of inputs over the committed seed corpus. CI: tests/fuzz/run_fuzzer.sh [runs]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-runs="${1:-20000}"
+runs="${1:-50000}"
 build="${LIENEWTON_FUZZ_BUILD:-$root/build-fuzz}"
+"$root/scripts/deps.sh" fuzz
+# Every project file is instrumented (LIENEWTON_FUZZ); -O1 and line tables keep that build short.
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DLIENEWTON_FUZZ=ON \
   -DLIENEWTON_NATIVE=OFF -DLIENEWTON_BENCH=OFF -DLIENEWTON_TESTS=ON >/dev/null
 cmake --build "$build" -j"$(nproc)" --target lienewton_fuzz_request
 scratch="$(mktemp -d)"
