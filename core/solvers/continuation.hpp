@@ -12,7 +12,11 @@
 //   4. the path from the stiff end: as h -> infinity the roots of (1.1) tend to equilibria of y' = y g(y)
 //      (g(y) = 0), and the component identity J of z (I, or diag(-1, 1, ..., 1) when det z < 0) is one for
 //      both paper problems. Solve at h from J; failing that at 2h, 4h, ..., 2^kStiffDoublings h from J until a
-//      root is found, then halve back down to h, each stage from the previous root.
+//      root is found, then halve back down to h, each stage from the previous root;
+//   5. the paths from below: at h/2, h/4, ... down to kContinuationStart, the solve from the given start and then
+//      from J; from the first root found, the path up to h (doubling, as in 3.). A root z's path cannot reach
+//      (it folds back or leaves log's branch) often lies on a branch that a smaller step meets and that then
+//      continues to h: on paper-linear N = 9, h = 64..512, J at h/2..h/16; N = 14, h = 32..1024, z at 16.
 // Every stage of 3. and 4. is tried as in 1. and 2.: with a globalization, a stage that finds no root is solved
 // again with full steps (a descent method stalls where the path of roots folds back; full steps jump on).
 // A path's stage that fails shrinks its ratio to the square root (2, 1.41, 1.19, ... going up; 1/2, 0.71, ...
@@ -78,7 +82,9 @@ class ContinuationSearch {
       r = walk(std::nullopt, 0.0, first_continuation_step(h_), 2.0);
       if (settled(r)) return finish(std::move(r));
     }
-    return finish(from_stiff_end(std::move(r)));  // 4.
+    r = from_stiff_end(std::move(r));  // 4.
+    if (settled(r)) return finish(std::move(r));
+    return finish(from_below(std::move(r)));  // 5.
   }
 
  private:
@@ -161,6 +167,22 @@ class ContinuationSearch {
       if (is_root(up)) return walk(Element(up.y), big_h, std::max(h_, big_h / 2), 0.5);
     }
     // No root above h: the answer stays the last try from the given start (its failure class says more of it).
+    result_h_ = h_;
+    return last;
+  }
+
+  // 5. of the file comment; last: the answer so far, returned when no root below h leads up to it.
+  SolveResult from_below(SolveResult last) {
+    const Element j = eq_.component_identity();
+    for (double low = h_ / 2; low >= kContinuationStart; low /= 2) {
+      for (const Element* start : {static_cast<const Element*>(nullptr), &j}) {
+        SolveResult r = try_at(low, start, start ? StageStart::identity : StageStart::given);
+        if (stopped(r)) return r;
+        if (!is_root(r)) continue;
+        r = walk(Element(r.y), low, std::min(h_, 2 * low), 2.0);
+        if (settled(r)) return r;
+      }
+    }
     result_h_ = h_;
     return last;
   }

@@ -207,6 +207,32 @@ TEST(Continuation, StiffEndStartsAtTheIdentityWhenThePathFromZeroFails) {
   EXPECT_GE(from_stiff_end, 2);  // Release: all 4; other rounding (ASan) lets a try from z converge on some
 }
 
+// Cells of paper-linear (exact, seed 1) that no try from z and no stiff-end path reaches: z's path folds back
+// below h = 6 at N = 9, and J at h, 2h, ..., 16h finds no root. J at h/2 does (at h = 32, with full steps), and its
+// root continues up to h (measured: h g(y) at angle 2.74 at h = 64, 2.73 at h = 128, inside log's branch).
+const Cell kBelow[] = {{ProblemKind::paper_linear, 9, 64.0, Method::newton_group},
+                       {ProblemKind::paper_linear, 9, 128.0, Method::newton_group}};
+INSTANTIATE_TEST_SUITE_P(FromBelow, ContinuedCell, ::testing::ValuesIn(kBelow));
+
+TEST(Continuation, PathFromBelowGoesUpFromARootAtASmallerStep) {
+  for (const Cell& c : kBelow) {
+    const SolveResult r = solve(request(c.problem, c.n, c.h, c.method, true));
+    ASSERT_EQ(r.status, Status::converged) << r.reason;
+    // The last identity-started stage is below h (the stiff end's ones are at h ... 16h and found nothing) ...
+    const auto last_from_identity = std::find_if(r.continuation.rbegin(), r.continuation.rend(),
+                                                 [](const ContinuationStage& s) { return s.start == StageStart::identity; });
+    ASSERT_NE(last_from_identity, r.continuation.rend());
+    EXPECT_LT(last_from_identity->h, c.h);
+    EXPECT_NE(last_from_identity->status, Status::max_iterations);
+    // ... and every stage after it goes up from a root, to h.
+    for (auto s = last_from_identity.base(); s != r.continuation.end(); ++s) {
+      EXPECT_EQ(s->start, StageStart::root);
+      EXPECT_GT(s->h, last_from_identity->h);
+    }
+    EXPECT_EQ(r.continuation.back().h, c.h);
+  }
+}
+
 // With a globalization the second try at h is the paper's full-step Newton from the same start: a cell the plain
 // solve converges on is never lost (paper-sine N = 6, h = 1/4: plain converges in 7 iterations; the line search
 // alone wandered for 100 in Release, so where another build's rounding lets it converge the second try is not
