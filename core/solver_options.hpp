@@ -15,6 +15,10 @@ struct SolverOptions {
   bool include_iterates = false;  // keep every iterate y_n in the trace (solve only; sweeps and steps drop them)
   // Newton only: none = the paper's full steps; line-search, trust-region (solvers/globalization.hpp)
   Globalization globalization = Globalization::none;
+  // Globalised Version 1 only: full Newton steps that do not decrease 1/2 ||f||^2 may be taken for a while
+  // (solvers/watchdog.hpp). Off by default: its episodes can spend the iterations in which the strategy alone
+  // would reach a stationary point without a root (local_minimum) or log's cut (no_descent).
+  bool watchdog = false;
   // Reach h through h_0 < h_1 < ... < h, each stage started at the previous root (solvers/continuation.hpp).
   bool continuation = false;
   // Wall and CPU time of every trace record, and the solve's CPU time. Sweeps and basin maps turn it off: reading

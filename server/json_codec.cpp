@@ -201,6 +201,7 @@ void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s
   if (auto x = f["globalization"])
     s.globalization = read_enum(*x, "globalization", globalization_from_string, kAllGlobalizations);
   if (auto x = f["continuation"]) s.continuation = read_bool(*x, "continuation");
+  if (auto x = f["watchdog"]) s.watchdog = read_bool(*x, "watchdog");
   if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
 }
 
@@ -255,7 +256,7 @@ json parse_body(std::string_view text) {
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
                       "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization",
-                      "continuation"});
+                      "continuation", "watchdog"});
   SolveRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -266,7 +267,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation"});
+                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation", "watchdog"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -301,7 +302,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
                       "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization",
-                      "continuation", "predictor"});
+                      "continuation", "watchdog", "predictor"});
   IntegrateRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -318,7 +319,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping", "linear_solver", "globalization", "continuation", "predictor"});
+                      "stopping", "linear_solver", "globalization", "continuation", "watchdog", "predictor"});
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -672,6 +673,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
   if (!t.step_kind.empty()) j["step_kind"] = t.step_kind;
   if (t.step_length) j["step_length"] = finite_or_null(*t.step_length);
   if (t.trust_radius) j["trust_radius"] = finite_or_null(*t.trust_radius);
+  if (t.step_from_iterate) j["step_from_iterate"] = *t.step_from_iterate;
   if (t.stage_h) j["stage_h"] = finite_or_null(*t.stage_h);
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;

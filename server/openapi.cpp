@@ -77,6 +77,12 @@ json schemas() {
                       "else at 2h, ..., 16h and halve back to h from the root found. With a globalization every stage "
                       "that finds no root is solved again from the same start with full steps. The result's "
                       "continuation lists the stages, and only a solve at h decides the status"}};
+  const json watchdog = json{
+      {"type", "boolean"}, {"default", false},
+      {"description", "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it "
+                      "jumps at log's cut), take it anyway, up to 32 full steps until one falls below the Armijo "
+                      "bound of the iterate it started from, else go back there and take the globalised step; at "
+                      "most 3 such episodes go back. Continuation's stages never use it"}};
   json predictor = enum_schema(kAllPredictors,
                                "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
                                "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "
@@ -103,7 +109,7 @@ json schemas() {
                                             "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
                                             "equation's z")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
+                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -113,10 +119,14 @@ json schemas() {
                             {"seconds", nullable_number("wall time since the solve started")},
                             {"cpu_seconds", nullable_number("solver CPU time so far: the solving thread's CPU time, less what "
                                                             "streaming the records cost (as work-precision times its runs)")},
-                            {"step_kind", json{{"type", "string"}, {"enum", {"newton", "levenberg-marquardt", "dogleg", "cauchy"}},
-                                               {"description", "globalised Newton only: how u_{n-1} was found"}}},
+                            {"step_kind", json{{"type", "string"}, {"enum", {"newton", "levenberg-marquardt", "dogleg", "cauchy", "watchdog"}},
+                                               {"description", "globalised Newton only: how u_{n-1} was found (watchdog: "
+                                                               "a full Newton step that did not decrease 1/2 ||f||^2)"}}},
                             {"step_length", nullable_number("line search only: the accepted alpha of y_{n-1} exp(alpha u)")},
                             {"trust_radius", nullable_number("trust region only: the radius u_{n-1} was taken in")},
+                            {"step_from_iterate", json{{"type", "integer"},
+                                                       {"description", "globalised Newton only: the watchdog went back "
+                                                                       "to this earlier iterate and u_{n-1} starts there"}}},
                             {"stage_h", nullable_number("continuation only: the h of the stage this iterate belongs to "
                                                         "(streams carry every stage's records, the result's trace the last)")},
                             {"y", matrix("iterate, only with include_iterates")}};
@@ -151,7 +161,7 @@ json schemas() {
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
                               {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization},
-                              {"continuation", continuation},
+                              {"continuation", continuation}, {"watchdog", watchdog},
                               {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
                                                {"description", "threads of this sweep (0: all cores)"}}},
                               {"shard", object({{"index", integer("this part, 0 <= index < count")},
@@ -174,7 +184,7 @@ json schemas() {
                               {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
                               {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
                               {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping}, {"linear_solver", linear_solver},
-                              {"globalization", globalization}, {"continuation", continuation},
+                              {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog},
                               {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
                                             {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
                                                             "beyond --max-output-values numbers: 413)"}}},
@@ -220,7 +230,7 @@ json schemas() {
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
                                   {"predictor", predictor},
-                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
+                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -242,7 +252,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}});
+                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

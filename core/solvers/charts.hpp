@@ -19,6 +19,8 @@ class GroupChart {
   using State = typename G::Element;
   using Vector = typename G::Vector;
   using Operator = typename G::Operator;
+  // phi = 1/2 ||f||^2 jumps where z^-1 y turns through angle pi: f of (3.6) holds log (solvers/watchdog.hpp).
+  static constexpr bool kMeritJumps = true;
 
   GroupChart(const Equation<G>& eq, Differential d)
       : eq_(eq), d_(d),
@@ -55,6 +57,8 @@ class AlgebraChart {
   using State = typename G::Vector;
   using Vector = typename G::Vector;
   using Operator = typename G::Operator;
+  // f~ of (3.21) has no log: phi is as smooth as g.
+  static constexpr bool kMeritJumps = false;
 
   AlgebraChart(const Equation<G>& eq, Differential d) : eq_(eq), d_(d) {}
 

@@ -116,7 +116,9 @@ class ContinuationSearch {
   SolveResult stage(double h, const Element* start, StageStart start_name, const SolverOptions& o) {
     Equation<G> e = eq_.at_step(h);
     if (start) e.start_at(*start);
-    SolveResult r = solve_(e, o, tagged_with_step(cb_, h));
+    SolverOptions monotone = o;  // a stage follows the root near its start: no watchdog jumps to another branch
+    monotone.watchdog = false;
+    SolveResult r = solve_(e, monotone, tagged_with_step(cb_, h));
     path_.push_back({h, r.status, r.iterations, r.residual, start_name, o.globalization});
     result_h_ = h;
     seconds_ += r.seconds;

@@ -13,6 +13,7 @@
 #include "newton_model.hpp"
 #include "solver_run.hpp"
 #include "trust_region.hpp"
+#include "watchdog.hpp"
 
 namespace lienewton {
 
@@ -49,9 +50,13 @@ SolveResult globalized_newton(const Chart& chart, typename Chart::State start, c
 template <LieGroup G, class Chart>
 SolveResult globalized_newton(const Chart& chart, typename Chart::State start, const SolverOptions& opt,
                               const TraceCallback& cb) {
+  const bool watchdog = opt.watchdog && Chart::kMeritJumps;
   if (opt.globalization == Globalization::trust_region)
-    return globalized_newton<G>(chart, std::move(start), opt, cb, TrustRegion<G, Chart>(opt.tol));
-  return globalized_newton<G>(chart, std::move(start), opt, cb, LineSearch<G, Chart>(opt.tol));
+    return globalized_newton<G>(
+        chart, std::move(start), opt, cb,
+        Watchdog<G, Chart, TrustRegion<G, Chart>>(TrustRegion<G, Chart>(opt.tol), opt.tol, watchdog));
+  return globalized_newton<G>(chart, std::move(start), opt, cb,
+                              Watchdog<G, Chart, LineSearch<G, Chart>>(LineSearch<G, Chart>(opt.tol), opt.tol, watchdog));
 }
 
 }  // namespace lienewton

@@ -74,7 +74,7 @@ class LineSearch {
         Advance<Chart> a;
         a.next = t.p;
         a.s = alpha * s;
-        a.info = {kind, alpha, {}};
+        a.info = {kind, alpha, {}, {}};
         a.reorthogonalised = t.reorthogonalised;
         return a;
       }

@@ -29,12 +29,18 @@ class NewtonModel {
 
   const Point& point() const { return p_; }
   const Chart& chart() const { return chart_; }
+  bool krylov() const { return krylov_; }
   double merit() const { return 0.5 * p_.f.squaredNorm(); }
 
-  // Newton's step u: D u = -f, (3.5) or (3.20), by the configured linear solver.
+  // Newton's step u: D u = -f, (3.5) or (3.20), by the configured linear solver; solved once per model (the
+  // watchdog and the strategy both ask for it).
   detail::StepOutcome newton(Vector& u) {
-    return detail::newton_step<G>(
-        krylov_, [&] { return FactoredOperator<Operator>{matrix(), std::nullopt}; }, [&](const Vector& w) { return chart_.apply(p_, w); }, p_.f, u);
+    if (!newton_outcome_)
+      newton_outcome_ = detail::newton_step<G>(
+          krylov_, [&] { return FactoredOperator<Operator>{matrix(), std::nullopt}; },
+          [&](const Vector& w) { return chart_.apply(p_, w); }, p_.f, newton_u_);
+    u = newton_u_;
+    return *newton_outcome_;
   }
   const Operator& matrix() {
     if (!d_) d_ = chart_.matrix(p_);
@@ -66,6 +72,8 @@ class NewtonModel {
   bool krylov_;
   std::optional<Operator> d_;
   std::optional<Vector> g_;
+  std::optional<detail::StepOutcome> newton_outcome_;
+  Vector newton_u_;
 };
 
 // ||D^T f|| <= delta ||D||_F ||f||: f lies in the null space of D^T to the accuracy the gradient can be known

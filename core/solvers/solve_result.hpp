@@ -25,10 +25,13 @@ struct TraceRecord {
   double cpu_seconds = 0;          // the solver's own CPU time so far (thread CPU time, callbacks excluded)
   Eigen::MatrixXd y;               // y_n when include_iterates, else empty
   // Globalised Newton only (solvers/globalization.hpp): how u_{n-1} was found ("newton", "levenberg-marquardt",
-  // "dogleg", "cauchy"), the accepted line-search length alpha, the trust radius the step was taken in.
+  // "dogleg", "cauchy", "watchdog": a full step that did not decrease phi, solvers/watchdog.hpp), the accepted
+  // line-search length alpha, the trust radius the step was taken in, and the earlier iterate the step started
+  // from when the watchdog went back to it.
   std::string step_kind;
   std::optional<double> step_length;
   std::optional<double> trust_radius;
+  std::optional<int> step_from_iterate;
   std::optional<double> stage_h;   // continuation only: the h of the stage this iterate belongs to
   double distance_to_pi() const { return std::numbers::pi - angle; }
 };

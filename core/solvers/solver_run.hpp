@@ -24,6 +24,7 @@ struct StepInfo {
   std::string_view kind;              // empty: a plain full step
   std::optional<double> length;       // line search: the accepted alpha
   std::optional<double> radius;       // trust region: the radius the step was taken in
+  std::optional<int> from_iterate;    // watchdog: the step starts at this earlier iterate, not the last one
 };
 
 template <LieGroup G>
@@ -52,6 +53,7 @@ class SolverRun {
     rec.step_kind = info.kind;
     rec.step_length = info.length;
     rec.trust_radius = info.radius;
+    rec.step_from_iterate = info.from_iterate;
     const Iterate it{p.y, monitor_.iteration(), p.residual, p.algebra_residual, driven, floor};
     if (!(best_.driven <= driven)) best_ = it;
     last_ = it;

@@ -59,7 +59,7 @@ class TrustRegion {
         Advance<Chart> a;
         a.next = t.p;
         a.s = s;
-        a.info = {kind, {}, used};
+        a.info = {kind, {}, used, {}};
         a.reorthogonalised = t.reorthogonalised;
         return a;
       }

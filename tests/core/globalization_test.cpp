@@ -169,3 +169,63 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace lienewton
+
+namespace lienewton {
+namespace {
+
+// The watchdog (solvers/watchdog.hpp). paper-linear N = 7, h = 64 from z: the monotone line search runs out of
+// iterations; with the watchdog it takes full steps through iterates where 1/2 ||f||^2 grows ("watchdog" steps)
+// and converges (in 14 iterations when measured).
+TEST(Watchdog, TakesTheFullStepsAMonotoneSearchRefuses) {
+  SolveRequest req = paper_request(ProblemKind::paper_linear, 7, 64, Method::newton_group, Differential::exact,
+                                   Globalization::line_search);
+  req.solver.watchdog = true;
+  const SolveResult r = solve(req);
+  ASSERT_EQ(r.status, Status::converged) << r.reason;
+  int relaxed = 0;
+  for (const TraceRecord& t : r.trace) relaxed += t.step_kind == "watchdog";
+  EXPECT_GE(relaxed, 1);
+  const Oracle o = oracle(ProblemKind::paper_linear, 64, start_point(7, 1), r.y);
+  EXPECT_LE(o.residual, 1e-13 + r.floor) << "converged means ||f(y)|| <= tol for the returned y";
+  EXPECT_LE(o.angle, std::numbers::pi);
+
+  req.solver.watchdog = false;
+  const SolveResult monotone = solve(req);
+  EXPECT_NE(monotone.status, Status::converged) << "the case must need the watchdog: " << monotone.reason;
+  for (const TraceRecord& t : monotone.trace) EXPECT_NE(t.step_kind, "watchdog");
+}
+
+// An episode that does not pay off: paper-linear N = 6, h = 8. The 32 full steps after the reference iterate all
+// stay above its Armijo bound, so the iteration goes back and takes the line search's step from the reference:
+// that record names the reference (step_from_iterate), its step is the distance from the reference's y (checked
+// with Eigen's log, not the production one) and its residual lies below the reference's.
+TEST(Watchdog, GoesBackToTheReferenceWhenTheEpisodeDoesNotPayOff) {
+  SolveRequest req = paper_request(ProblemKind::paper_linear, 6, 8, Method::newton_group, Differential::exact,
+                                   Globalization::line_search);
+  req.solver.include_iterates = true;
+  req.solver.watchdog = true;
+  const SolveResult r = solve(req);
+  ASSERT_EQ(r.status, Status::converged) << r.reason;
+  int back = -1;
+  for (int k = 0; k <= r.iterations; ++k)
+    if (r.trace[k].step_from_iterate) {
+      back = k;
+      break;
+    }
+  ASSERT_GT(back, 0) << "the case must go back";
+  const int ref = *r.trace[back].step_from_iterate;
+  ASSERT_EQ(back - ref - 1, kWatchdogSteps);
+  const double bound = std::sqrt(1.0 - 2.0 * kArmijoC1) * r.trace[ref].residual;  // phi = 1/2 ||f||^2
+  for (int k = ref + 1; k < back; ++k) {
+    EXPECT_EQ(r.trace[k].step_kind, "watchdog") << "record " << k;
+    EXPECT_GT(r.trace[k].residual, bound) << "record " << k << ": the episode would have paid off";
+  }
+  EXPECT_LT(r.trace[back].residual, r.trace[ref].residual);
+  const Eigen::MatrixXd s = oracle_log(r.trace[ref].y.transpose() * r.trace[back].y);
+  EXPECT_NEAR(s.norm() / std::sqrt(2.0), r.trace[back].step, 1e-10);
+  const Oracle o = oracle(ProblemKind::paper_linear, 8, start_point(6, 1), r.y);
+  EXPECT_LE(o.residual, 1e-13 + r.floor);
+}
+
+}  // namespace
+}  // namespace lienewton

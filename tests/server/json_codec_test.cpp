@@ -196,29 +196,32 @@ TEST(JsonCodec, StoppingRuleOnEveryRequest) {
   }
 }
 
-// continuation on every request that takes solver options (basins too), predictor on the integrating ones; a
-// wrong type is refused naming the field.
-TEST(JsonCodec, ContinuationAndPredictor) {
-  const json on = parse_body(R"({"continuation":true})");
-  EXPECT_FALSE(solve_request_from_json(parse_body("{}"), Limits{}).solver.continuation);
-  EXPECT_TRUE(solve_request_from_json(on, Limits{}).solver.continuation);
-  EXPECT_TRUE(sweep_request_from_json(on, Limits{}).solver.continuation);
-  EXPECT_TRUE(integrate_request_from_json(on, Limits{}).solver.continuation);
-  EXPECT_TRUE(work_precision_request_from_json(on, Limits{}).solver.continuation);
-  EXPECT_TRUE(basin_request_from_json(on, Limits{}).solve.solver.continuation);
+// continuation and watchdog on every request that takes solver options (basins too), predictor on the integrating
+// ones; a wrong type is refused naming the field.
+TEST(JsonCodec, ContinuationWatchdogAndPredictor) {
+  for (const auto& [name, flag] : {std::pair{"continuation", &SolverOptions::continuation},
+                                   std::pair{"watchdog", &SolverOptions::watchdog}}) {
+    const json on = json{{name, true}};
+    EXPECT_FALSE(solve_request_from_json(parse_body("{}"), Limits{}).solver.*flag) << name;
+    EXPECT_TRUE(solve_request_from_json(on, Limits{}).solver.*flag) << name;
+    EXPECT_TRUE(sweep_request_from_json(on, Limits{}).solver.*flag) << name;
+    EXPECT_TRUE(integrate_request_from_json(on, Limits{}).solver.*flag) << name;
+    EXPECT_TRUE(work_precision_request_from_json(on, Limits{}).solver.*flag) << name;
+    EXPECT_TRUE(basin_request_from_json(on, Limits{}).solve.solver.*flag) << name;
+    for (const json& value : {json("yes"), json(1), json::array({true})}) {
+      const json body = json{{name, value}};
+      for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
+                               failure_of([&] { sweep_request_from_json(body, Limits{}); }),
+                               failure_of([&] { integrate_request_from_json(body, Limits{}); }),
+                               failure_of([&] { work_precision_request_from_json(body, Limits{}); }),
+                               failure_of([&] { basin_request_from_json(body, Limits{}); })}) {
+        EXPECT_EQ(f.field, name) << body.dump();
+      }
+    }
+  }
   EXPECT_EQ(integrate_request_from_json(parse_body("{}"), Limits{}).predictor, Predictor::lie_euler);
   EXPECT_EQ(integrate_request_from_json(parse_body(R"({"predictor":"none"})"), Limits{}).predictor, Predictor::none);
   EXPECT_EQ(work_precision_request_from_json(parse_body(R"({"predictor":"none"})"), Limits{}).predictor, Predictor::none);
-  for (const char* bad : {R"({"continuation":"yes"})", R"({"continuation":1})", R"({"continuation":[true]})"}) {
-    const json body = parse_body(bad);
-    for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
-                             failure_of([&] { sweep_request_from_json(body, Limits{}); }),
-                             failure_of([&] { integrate_request_from_json(body, Limits{}); }),
-                             failure_of([&] { work_precision_request_from_json(body, Limits{}); }),
-                             failure_of([&] { basin_request_from_json(body, Limits{}); })}) {
-      EXPECT_EQ(f.field, "continuation") << bad;
-    }
-  }
   for (const char* bad : {R"({"predictor":"newton"})", R"({"predictor":1})", R"({"predictor":true})"}) {
     const json body = parse_body(bad);
     EXPECT_EQ(failure_of([&] { integrate_request_from_json(body, Limits{}); }).field, "predictor") << bad;
