@@ -88,13 +88,22 @@ class Watchdog {
     return a;
   }
 
-  // The strategy's step from the reference, which the episode's iterates did not improve on.
+  // The strategy's step from the reference, which the episode's iterates did not improve on. When the strategy
+  // stops there (no_descent, local_minimum, ...), the reference itself is the next iterate (a step of length 0),
+  // and with no episodes left the strategy stops again at it: the status is then true of the y the solve returns,
+  // not of the episode's last iterate.
   Advance<Chart> back(const Chart& chart) {
     const Reference r = std::move(*reference_);
     reference_.reset();
     --episodes_left_;
     NewtonModel<G, Chart> model(chart, r.p, krylov_);
     Advance<Chart> a = strategy_.step(model, r.floor);
+    if (!a.next && a.failure != Status::cancelled) {
+      episodes_left_ = 0;
+      a.next = r.p;
+      a.s = Vector::Zero(r.p.f.size());
+      a.info = {"watchdog", {}, {}, {}};
+    }
     a.info.from_iterate = r.iterate;
     return a;
   }
