@@ -121,7 +121,9 @@ json schemas() {
                                                             "streaming the records cost (as work-precision times its runs)")},
                             {"step_kind", json{{"type", "string"}, {"enum", {"newton", "levenberg-marquardt", "dogleg", "cauchy", "watchdog"}},
                                                {"description", "globalised Newton only: how u_{n-1} was found (watchdog: "
-                                                               "a full Newton step that did not decrease 1/2 ||f||^2)"}}},
+                                                               "a full Newton step that did not decrease 1/2 ||f||^2, or, "
+                                                               "with step 0 and step_from_iterate, the return to that "
+                                                               "iterate where the strategy finds no step from it)"}}},
                             {"step_length", nullable_number("line search only: the accepted alpha of y_{n-1} exp(alpha u)")},
                             {"trust_radius", nullable_number("trust region only: the radius u_{n-1} was taken in")},
                             {"step_from_iterate", json{{"type", "integer"},

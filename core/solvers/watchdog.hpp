@@ -41,7 +41,6 @@ class Watchdog {
 
   Advance<Chart> step(NewtonModel<G, Chart>& model, double floor) {
     const int iterate = iterate_++;
-    krylov_ = model.krylov();
     if (reference_) {
       if (model.merit() <= reference_->bound) {
         reference_.reset();  // the episode paid off: this iterate is the next reference
@@ -51,7 +50,7 @@ class Watchdog {
             ++relaxed_;
             return *a;
           }
-        return back(model.chart());
+        return back(model);
       }
     }
     if (episodes_left_ > 0 && !stationary_without_root(model, tol_, floor))
@@ -92,11 +91,11 @@ class Watchdog {
   // stops there (no_descent, local_minimum, ...), the reference itself is the next iterate (a step of length 0),
   // and with no episodes left the strategy stops again at it: the status is then true of the y the solve returns,
   // not of the episode's last iterate.
-  Advance<Chart> back(const Chart& chart) {
+  Advance<Chart> back(const NewtonModel<G, Chart>& last) {
     const Reference r = std::move(*reference_);
     reference_.reset();
     --episodes_left_;
-    NewtonModel<G, Chart> model(chart, r.p, krylov_);
+    NewtonModel<G, Chart> model(last.chart(), r.p, last.krylov());
     Advance<Chart> a = strategy_.step(model, r.floor);
     if (!a.next && a.failure != Status::cancelled) {
       episodes_left_ = 0;
@@ -114,7 +113,6 @@ class Watchdog {
   int relaxed_ = 0;
   int episodes_left_;
   int iterate_ = 0;
-  bool krylov_ = false;
 };
 
 }  // namespace lienewton
