@@ -41,7 +41,10 @@ inline constexpr IntegerField n{"n", 2, 100000, 3, "matrix size N (capped by --m
 inline constexpr IntegerField max_iterations{"max_iterations", 1, 100000, 100, "capped by --max-iterations"};
 
 inline constexpr const NumberField* kNumberFields[] = {&h, &tol, &t_end};
-inline constexpr const IntegerField* kIntegerFields[] = {&n, &max_iterations};
+inline constexpr IntegerField restarts{"restarts", 0, 10000, 0,
+                                      "continuation only: solves at h from seeded starts after its paths fail"};
+
+inline constexpr const IntegerField* kIntegerFields[] = {&n, &max_iterations, &restarts};
 
 // A bound as a person writes it: 1e6, 1e-16, 100, 0.5 (shortest round-trip, no "e+06").
 std::string format_bound(double x);

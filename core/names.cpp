@@ -35,7 +35,8 @@ constexpr std::pair<Globalization, std::string_view> kGlobalizationNames[] = {
 constexpr std::pair<Predictor, std::string_view> kPredictorNames[] = {
     {Predictor::none, "none"}, {Predictor::lie_euler, "lie-euler"}};
 constexpr std::pair<StageStart, std::string_view> kStageStartNames[] = {
-    {StageStart::given, "start"}, {StageStart::root, "root"}, {StageStart::identity, "identity"}};
+    {StageStart::given, "start"}, {StageStart::root, "root"}, {StageStart::identity, "identity"},
+    {StageStart::restart, "restart"}};
 
 template <class E, std::size_t K>
 std::string_view name_of(const std::pair<E, std::string_view> (&table)[K], E value) {

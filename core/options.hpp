@@ -29,8 +29,9 @@ enum class Globalization { none, line_search, trust_region };
 // whose residual h a_ii (g(Z_i) - g(Y)) is O(h^2) instead of O(h) (core/integrate.cpp).
 enum class Predictor { none, lie_euler };
 // Where a continuation stage (core/solvers/continuation.hpp) starts its iteration: given = the request's start (z
-// or y0), root = the previous stage's root, identity = the identity of z's component.
-enum class StageStart { given, root, identity };
+// or y0), root = the previous stage's root, identity = the identity of z's component, restart = one of the
+// seeded starts around the request's start (core/solvers/restart_start.hpp).
+enum class StageStart { given, root, identity, restart };
 
 std::string_view to_string(ProblemKind);
 std::string_view to_string(Method);
@@ -61,6 +62,7 @@ inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algeb
 inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,
                                                        Globalization::trust_region};
 inline constexpr Predictor kAllPredictors[] = {Predictor::none, Predictor::lie_euler};
-inline constexpr StageStart kAllStageStarts[] = {StageStart::given, StageStart::root, StageStart::identity};
+inline constexpr StageStart kAllStageStarts[] = {StageStart::given, StageStart::root, StageStart::identity,
+                                                 StageStart::restart};
 
 }  // namespace lienewton

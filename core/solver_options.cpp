@@ -9,6 +9,9 @@ namespace lienewton {
 void validate(const SolverOptions& options) {
   validation::check(fields::tol, options.tol, "tol");
   validation::check(fields::max_iterations, options.max_iterations, "max_iterations");
+  validation::check(fields::restarts, options.restarts, "restarts");
+  if (options.restarts > 0 && !options.continuation)
+    validation::unprocessable("restarts", "restarts are the last try of a continued solve: they need continuation: true");
 }
 
 void check_globalization(Method method, const SolverOptions& options) {

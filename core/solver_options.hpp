@@ -21,6 +21,9 @@ struct SolverOptions {
   bool watchdog = false;
   // Reach h through h_0 < h_1 < ... < h, each stage started at the previous root (solvers/continuation.hpp).
   bool continuation = false;
+  // Continuation only: after its paths fail, up to this many solves at h from seeded starts around the request's
+  // start (the search's last try, solvers/continuation.hpp).
+  int restarts = 0;
   // Wall and CPU time of every trace record, and the solve's CPU time. Sweeps and basin maps turn it off: reading
   // the thread's CPU clock is a system call that costs more than an SO(3) iteration (two per solve were 13 % of a
   // 256 x 256 SO(3) basin map's CPU time). Untimed, a result's cpu_seconds is 0 (neither reports it); its wall
@@ -28,7 +31,7 @@ struct SolverOptions {
   bool timed = true;
 };
 
-// Checks tol and max_iterations; throws RequestError naming the field.
+// Checks tol, max_iterations and restarts (which needs continuation); throws RequestError naming the field.
 void validate(const SolverOptions& options);
 // A globalization other than none needs a Newton method: 422 naming "globalization" for the fixed point.
 void check_globalization(Method method, const SolverOptions& options);

@@ -202,6 +202,7 @@ void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s
     s.globalization = read_enum(*x, "globalization", globalization_from_string, kAllGlobalizations);
   if (auto x = f["continuation"]) s.continuation = read_bool(*x, "continuation");
   if (auto x = f["watchdog"]) s.watchdog = read_bool(*x, "watchdog");
+  if (auto x = f["restarts"]) s.restarts = read_field(*x, fields::restarts, "restarts", fields::restarts.max);
   if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
 }
 
@@ -256,7 +257,7 @@ json parse_body(std::string_view text) {
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
                       "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization",
-                      "continuation", "watchdog"});
+                      "continuation", "watchdog", "restarts"});
   SolveRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -267,7 +268,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation", "watchdog"});
+                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation", "watchdog", "restarts"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -302,7 +303,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
                       "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization",
-                      "continuation", "watchdog", "predictor"});
+                      "continuation", "watchdog", "restarts", "predictor"});
   IntegrateRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -319,7 +320,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping", "linear_solver", "globalization", "continuation", "watchdog", "predictor"});
+                      "stopping", "linear_solver", "globalization", "continuation", "watchdog", "restarts", "predictor"});
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
   read_solver_options(f, limits, r.solver);
@@ -701,11 +702,13 @@ json to_json(const SolveResult& r, bool include_iterates) {
   if (r.algebra_residual) j["algebra_residual"] = finite_or_null(*r.algebra_residual);
   if (!r.continuation.empty()) {
     json stages = json::array();
-    for (const ContinuationStage& s : r.continuation)
+    for (const ContinuationStage& s : r.continuation) {
       stages.push_back(json{{"h", finite_or_null(s.h)}, {"status", std::string(to_string(s.status))},
                             {"iterations", s.iterations}, {"residual", finite_or_null(s.residual)},
                             {"start", std::string(to_string(s.start))},
                             {"globalization", std::string(to_string(s.globalization))}});
+      if (s.restart) stages.back()["restart"] = *s.restart;
+    }
     j["continuation"] = json{{"stages", std::move(stages)}, {"total_iterations", r.total_iterations()}};
   }
   return j;

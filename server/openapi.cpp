@@ -74,9 +74,17 @@ json schemas() {
                       "fails, reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is "
                       "retried at the geometric mean of its h and the last reached one), each stage started at the "
                       "previous root; failing that, from the stiff end: solve from the identity of z's component at h, "
-                      "else at 2h, ..., 16h and halve back to h from the root found. With a globalization every stage "
-                      "that finds no root is solved again from the same start with full steps. The result's "
-                      "continuation lists the stages, and only a solve at h decides the status"}};
+                      "else at 2h, ..., 16h and halve back to h from the root found; failing that, at h/2, h/4, ..., 1/16 "
+                      "from the request's start and from that identity, and up to h from the first root found; "
+                      "failing that, the restarts (restarts). With a globalization every stage that finds no root "
+                      "is solved again from the same start with full steps. The result's continuation lists the "
+                      "stages, and only a solve at h decides the status"}};
+  json restarts = schema_of(fields::restarts);
+  restarts["maximum"] = fields::restarts.max;
+  restarts["description"] = "continuation only (else 422): the search's last try, up to this many solves at h (at most "
+                            "32 iterations each, the requested globalization, no watchdog) from the starts "
+                            "y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at most 3.1 rad, until "
+                            "one converges";
   const json watchdog = json{
       {"type", "boolean"}, {"default", false},
       {"description", "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it "
@@ -109,7 +117,7 @@ json schemas() {
                                             "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
                                             "equation's z")},
                               {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
+                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -151,8 +159,9 @@ json schemas() {
                                                                                    {"status", status},
                                                                                    {"iterations", integer("")},
                                                                                    {"residual", nullable_number("||f(y)|| at this stage's h")},
-                                                                                   {"start", enum_schema(kAllStageStarts, "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component")},
-                                                                                   {"globalization", globalization}},
+                                                                                   {"start", enum_schema(kAllStageStarts, "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component, a seeded restart")},
+                                                                                   {"globalization", globalization},
+                                                                                   {"restart", integer("start = restart only: the seed k of the start y0 exp(x_k)")}},
                                                                                   {}, false))},
                                                       {"total_iterations", integer("summed over the stages")}},
                                                      {}, false)}},
@@ -163,7 +172,7 @@ json schemas() {
                               {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
                               {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
                               {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization},
-                              {"continuation", continuation}, {"watchdog", watchdog},
+                              {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts},
                               {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
                                                {"description", "threads of this sweep (0: all cores)"}}},
                               {"shard", object({{"index", integer("this part, 0 <= index < count")},
@@ -186,7 +195,7 @@ json schemas() {
                               {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
                               {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
                               {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping}, {"linear_solver", linear_solver},
-                              {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog},
+                              {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts},
                               {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
                                             {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
                                                             "beyond --max-output-values numbers: 413)"}}},
@@ -232,7 +241,7 @@ json schemas() {
                                   {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
                                   {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
                                   {"predictor", predictor},
-                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
+                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -254,7 +263,7 @@ json schemas() {
   s["WorkPrecisionChoice"] = choice;
   s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
                                       {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}});
+                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},

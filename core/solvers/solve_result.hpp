@@ -45,6 +45,7 @@ struct ContinuationStage {
   double residual = 0;  // ||f(y)|| at this stage's h of the stage's returned y
   StageStart start = StageStart::given;
   Globalization globalization = Globalization::none;
+  std::optional<int> restart;  // start == restart: which of the seeded starts (restart_start.hpp), from 0
 };
 
 struct SolveResult {

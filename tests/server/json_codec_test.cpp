@@ -232,6 +232,41 @@ TEST(JsonCodec, ContinuationWatchdogAndPredictor) {
   EXPECT_EQ(on_solve.field, "predictor");
 }
 
+// restarts on every request that takes solver options (basins too), an integer in [0, 10000]; the codec reads it
+// alone (that it needs continuation is the core's check, core/solver_options.cpp).
+TEST(JsonCodec, Restarts) {
+  const json on = json{{"restarts", 64}, {"continuation", true}};
+  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).solver.restarts, 0);
+  EXPECT_EQ(solve_request_from_json(on, Limits{}).solver.restarts, 64);
+  EXPECT_EQ(sweep_request_from_json(on, Limits{}).solver.restarts, 64);
+  EXPECT_EQ(integrate_request_from_json(on, Limits{}).solver.restarts, 64);
+  EXPECT_EQ(work_precision_request_from_json(on, Limits{}).solver.restarts, 64);
+  EXPECT_EQ(basin_request_from_json(on, Limits{}).solve.solver.restarts, 64);
+  for (const json& value : {json(-1), json(10001), json(2.5), json("8"), json(true)}) {
+    const json body = json{{"restarts", value}};
+    for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
+                             failure_of([&] { sweep_request_from_json(body, Limits{}); }),
+                             failure_of([&] { basin_request_from_json(body, Limits{}); })}) {
+      EXPECT_EQ(f.field, "restarts") << body.dump();
+    }
+  }
+}
+
+// A continued result lists its stages; a restart stage also says which seeded start it ran from, other stages not.
+TEST(JsonCodec, ContinuationStagesNameTheirRestart) {
+  SolveResult r;
+  r.y = Eigen::MatrixXd::Identity(3, 3);
+  r.continuation = {{32.0, Status::max_iterations, 100, 0.5, StageStart::given, Globalization::line_search, {}},
+                    {32.0, Status::converged, 11, 2e-15, StageStart::restart, Globalization::line_search, 29}};
+  const json stages = to_json(r, false)["continuation"]["stages"];
+  ASSERT_EQ(stages.size(), 2u);
+  EXPECT_EQ(stages[0]["start"], "start");
+  EXPECT_FALSE(stages[0].contains("restart"));
+  EXPECT_EQ(stages[1]["start"], "restart");
+  EXPECT_EQ(stages[1]["restart"], 29);
+  EXPECT_EQ(to_json(r, false)["continuation"]["total_iterations"], 111);
+}
+
 TEST(JsonCodec, SweepResultRoundTrips) {
   SweepResult s;
   SweepCell c;
