@@ -187,6 +187,25 @@ def deadline_inside_continuation(t):
     return f"504 after {secs:.1f} s"
 
 
+def bad_restarts(t):
+    expect_refusal(t, "/api/v1/solve", '{"n": 3, "continuation": true, "restarts": -1}', {400, 422}, "restarts")
+    expect_refusal(t, "/api/v1/solve", '{"n": 3, "continuation": true, "restarts": 10001}', {400, 422}, "restarts")
+    expect_refusal(t, "/api/v1/sweep", '{"n": [3], "h": [1], "continuation": true, "restarts": "8"}', {400, 422},
+                   "restarts")
+    return expect_refusal(t, "/api/v1/solve", '{"n": 3, "restarts": 8}', {422}, "restarts")  # needs continuation
+
+
+def deadline_inside_restarts(t):
+    # paper-linear N = 10, h = 16 has no root that any try reaches: 10 000 restarts after the paths are minutes of
+    # work; the deadline (run_attacks.sh: --sweep-timeout 3) must end the search inside it.
+    body = json.dumps({"n": [10], "h": [16], "methods": ["newton-group"], "globalization": "line-search",
+                       "continuation": True, "restarts": 10000})
+    status, _, data, secs = t.request("POST", "/api/v1/sweep", body, timeout=40.0)
+    expect(status == 504, f"status {status}: {data[:120]!r}")
+    expect(secs < 6.0, f"504 after {secs:.1f} s with a 3 s deadline")
+    return f"504 after {secs:.1f} s"
+
+
 def deadline_inside_basin_map(t):
     # 128 x 128 starts at SO(12) by finite differences: far beyond the battery server's 3 s sweep deadline.
     body = json.dumps({"n": 12, "h": 32, "differential": "finite-difference", "size": 128})
@@ -509,7 +528,8 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            iterates_output_cap, image_pixels_cap, deadline_inside_integration, heatmap_get_needs_grid,
            cross_site_work, ndjson_stream, sse_stream, stream_first_record_early, huge_basin_grid,
            basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
-           bad_continuation, bad_predictor, deadline_inside_continuation]
+           bad_continuation, bad_predictor, deadline_inside_continuation, bad_restarts,
+           deadline_inside_restarts]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work]  # direct mode only: they start servers
 
 
