@@ -588,6 +588,7 @@ test('the stability map shows a Newton variant and continuation beside the paper
   await panel.getByLabel('Differential').selectOption('exact');
   await panel.getByLabel('Newton variant').selectOption('line-search');
   await panel.getByLabel('Continuation in h').selectOption('true');
+  await panel.getByLabel('Restarts').fill('16');
   for (const [name, v] of [['n_lo', '3'], ['n_hi', '3'], ['k_lo', '3'], ['k_hi', '6']]) {
     await panel.locator(`input[name="${name}"]`).fill(v);
   }
@@ -596,9 +597,10 @@ test('the stability map shows a Newton variant and continuation beside the paper
   const request = JSON.parse((await sent).postData());
   assert.equal(request.globalization, 'line-search');
   assert.equal(request.continuation, true);
+  assert.equal(request.restarts, 16);
   await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
   const { body: variant } = await api('/api/v1/sweep', request);
-  const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false });
+  const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false, restarts: 0 });
   for (const cell of variant.cells) {
     const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
     assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
@@ -613,6 +615,7 @@ test('the stability map shows a Newton variant and continuation beside the paper
   const solveRequest = JSON.parse((await solveSent).postData());
   assert.equal(solveRequest.globalization, 'line-search');
   assert.equal(solveRequest.continuation, true);
+  assert.equal(solveRequest.restarts, 16);
   await page.locator('#solve [data-result="iterations"]').waitFor();
   assert.equal(await page.locator('#solve select[name="continuation"]').inputValue(), 'true');
   // Back to the paper's setup for the tests after this one.
@@ -621,6 +624,7 @@ test('the stability map shows a Newton variant and continuation beside the paper
   await tab('Stability map');
   await panel.getByLabel('Newton variant').selectOption('none');
   await panel.getByLabel('Continuation in h').selectOption('false');
+  await panel.getByLabel('Restarts').fill('0');
 });
 
 test('no console errors beyond the deliberate bad request, nothing fetched from outside', () => {

@@ -22,6 +22,7 @@ export function createStabilityPanel(root, { openSolve }) {
     select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
     select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'The paper: none'),
     select('continuation', 'Continuation in h', CONTINUATION, 'false', 'The paper: off'),
+    number('restarts', 'Restarts', 0, 'With continuation: seeded starts tried last, 0 to 10000'),
     range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
     range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2\u1d4f; the paper: \u221210 to 10'),
     number('tol', 'Tolerance', 1e-13),
@@ -94,7 +95,7 @@ export function createStabilityPanel(root, { openSolve }) {
     const r = last.request;
     openSolve({ problem: r.problem, n: cell.n, h: cell.h, method: cell.method, differential: r.differential,
       tol: r.tol, max_iterations: r.max_iterations, seed: r.seed, globalization: r.globalization,
-      continuation: r.continuation });
+      continuation: r.continuation, restarts: r.restarts ?? 0 });
   }
 
   form.addEventListener('submit', async (e) => {
@@ -106,6 +107,7 @@ export function createStabilityPanel(root, { openSolve }) {
         h: wholeRange(form, 'k_lo', 'k_hi', 'k').map((k) => 2 ** k), seed: value(form, 'seed'),
         tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
         globalization: value(form, 'globalization'), continuation: value(form, 'continuation') === 'true' };
+      if (request.continuation) request.restarts = value(form, 'restarts');
       const grids = request.methods.map((method) => createGrid({ method, ns: request.n, hs: request.h,
         onShow: show, onOpen: openCell }));
       maps.replaceChildren(...grids.map((g) => g.element));
