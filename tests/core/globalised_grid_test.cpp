@@ -1,12 +1,15 @@
 // Globalised Version 1 on a block of the paper's grid where the plain iteration fails on more than half the cells
 // (issue 14; paper-linear, N = 7..9, h = 8..64, exact differential, seed 1): every converged answer is checked
 // against the independent oracle (Eigen's matrix log and exp), continuation keeps every cell the plain solve
-// converges on (its first try is that solve), and line search with continuation converges on most cells.
-// Measured counts of the 12 cells (Release): plain 5, continuation 8, line search 4, line search + continuation 8;
-// the counts asserted leave a margin of 2, since the plain iteration wanders chaotically on some of these cells.
+// converges on (its first try is that solve), and continued solves converge on most cells of each row.
+// Measured counts per row N = 7, 8, 9 (Release): plain 3, 3, 0; continued 4, 4, 4 with every globalization (the
+// ASan build's other rounding: 1 at N = 9 with the trust region). The counts asserted leave that margin: the
+// plain iteration wanders chaotically on some of these cells, and the continued one follows other paths.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "core/solve.hpp"
@@ -48,44 +51,61 @@ bool truly_converged(const SolveRequest& req, const SolveResult& r) {
   return true;
 }
 
-int converged_cells(Globalization globalization, bool continuation) {
-  int count = 0;
-  for (const GridCell& c : block()) {
-    const SolveRequest req = request(c, globalization, continuation);
-    count += truly_converged(req, solve(req));
-  }
-  return count;
-}
+// One row N of the block with one globalization (ctest runs each alone: under ASan a continued solve that fails
+// every try costs minutes, and the whole block in one test overran ctest's 300 s).
+struct Row {
+  Globalization globalization;
+  int n;
+};
+
+class ContinuedRow : public ::testing::TestWithParam<Row> {};
 
 // Continuation's first tries are the requested solve and, with a globalization, the plain solve: every cell the
-// plain solve converges on, the continued solve converges on, with the same y.
-TEST(GlobalisedGrid, ContinuationKeepsEveryPlainCell) {
-  for (Globalization globalization : {Globalization::none, Globalization::line_search, Globalization::trust_region}) {
-    int rescued = 0;
-    for (const GridCell& c : block()) {
-      const SolveRequest plain_req = request(c, Globalization::none, false);
-      const SolveResult plain = solve(plain_req);
-      const SolveRequest continued_req = request(c, globalization, true);
-      const SolveResult continued = solve(continued_req);
-      const bool plain_ok = truly_converged(plain_req, plain);
-      const bool continued_ok = truly_converged(continued_req, continued);
-      if (plain_ok) {
-        EXPECT_TRUE(continued_ok) << to_string(globalization) << " N = " << c.n << " h = " << c.h << ": "
-                                  << continued.reason;
-        if (globalization == Globalization::none) {
-          EXPECT_EQ(continued.y, plain.y);
-        }
+// plain solve converges on, the continued solve converges on, with the same y (without a globalization). And it
+// converges on most cells of the row, at N = 9 on cells where the plain solve fails.
+TEST_P(ContinuedRow, KeepsEveryPlainCellAndConvergesOnMost) {
+  const Row row = GetParam();
+  int converged = 0, rescued = 0;
+  for (const GridCell& c : block()) {
+    if (c.n != row.n) continue;
+    const SolveRequest plain_req = request(c, Globalization::none, false);
+    const SolveResult plain = solve(plain_req);
+    const SolveRequest continued_req = request(c, row.globalization, true);
+    const SolveResult continued = solve(continued_req);
+    const bool plain_ok = truly_converged(plain_req, plain);
+    const bool continued_ok = truly_converged(continued_req, continued);
+    if (plain_ok) {
+      EXPECT_TRUE(continued_ok) << to_string(row.globalization) << " N = " << c.n << " h = " << c.h << ": "
+                                << continued.reason;
+      if (row.globalization == Globalization::none) {
+        EXPECT_EQ(continued.y, plain.y);
       }
-      rescued += continued_ok && !plain_ok;
     }
-    EXPECT_GE(rescued, 1) << to_string(globalization);
+    converged += continued_ok;
+    rescued += continued_ok && !plain_ok;
+  }
+  if (row.n == 9) {
+    EXPECT_GE(rescued, 1);  // plain converges on none of this row; continued: 4 (Release), 1 (ASan's rounding)
+  } else {
+    EXPECT_GE(converged, 2);
   }
 }
 
-TEST(GlobalisedGrid, LineSearchWithContinuationConvergesOnMostCells) {
-  EXPECT_GE(converged_cells(Globalization::line_search, true), 6);  // measured 8 of 12
-  EXPECT_GE(converged_cells(Globalization::none, true), 6);         // measured 8 of 12
+std::vector<Row> rows() {
+  std::vector<Row> all;
+  for (Globalization g : {Globalization::none, Globalization::line_search, Globalization::trust_region})
+    for (int n : {7, 8, 9}) all.push_back({g, n});
+  return all;
 }
+
+// "line_search_N9": a test name.
+std::string name_of(const ::testing::TestParamInfo<Row>& info) {
+  std::string name(to_string(info.param.globalization));
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name + "_N" + std::to_string(info.param.n);
+}
+
+INSTANTIATE_TEST_SUITE_P(GlobalisedGrid, ContinuedRow, ::testing::ValuesIn(rows()), name_of);
 
 }  // namespace
 }  // namespace lienewton
