@@ -8,6 +8,7 @@
 #include "core/options.hpp"
 #include "core/status.hpp"
 #include "core/fields.hpp"
+#include "core/solvers/continuation.hpp"
 #include "server/openapi_labels.hpp"
 #include "server/routes.hpp"
 
@@ -81,10 +82,10 @@ json schemas() {
                       "stages, and only a solve at h decides the status"}};
   json restarts = schema_of(fields::restarts);
   restarts["maximum"] = fields::restarts.max;
-  restarts["description"] = "continuation only (else 422): the search's last try, up to this many solves at h (at most "
-                            "32 iterations each, the requested globalization, no watchdog) from the starts "
-                            "y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at most 3.1 rad, until "
-                            "one converges";
+  restarts["description"] = std::string(fields::restarts.description) + " (else 422), the search's last try: at most " +
+                            std::to_string(kRestartIterations) + " iterations each, the requested globalization, no "
+                            "watchdog, from y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at most " +
+                            fields::format_bound(kRestartAngle) + " rad; the first that converges ends the search";
   const json watchdog = json{
       {"type", "boolean"}, {"default", false},
       {"description", "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it "
