@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "options.hpp"
 #include "rigid_body_params.hpp"
@@ -12,6 +13,7 @@ namespace lienewton {
 
 struct ProblemSpec {
   ProblemKind kind = ProblemKind::paper_linear;
+  std::string group = "SO";  // the Lie group by its registered name; n is its index, as in SO(n)
   int n = 3;
   std::uint64_t seed = 1;
   std::optional<Eigen::MatrixXd> z{};  // start point; when absent, start_point(n, seed)
