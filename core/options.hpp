@@ -9,6 +9,8 @@ namespace lienewton {
 enum class ProblemKind { paper_linear, paper_sine, rigid_body };
 // fixed-point (1.2); newton-group = Version 1 (3.5); newton-algebra = Version 2 (3.20)
 enum class Method { fixed_point, newton_group, newton_algebra };
+// The fixed point forms no Newton differential, so a differential choice means nothing for it.
+inline constexpr bool uses_differential(Method m) { return m != Method::fixed_point; }
 // finite-difference (3.18)/(3.19); dexpinv-0 (3.10)/(3.16); dexpinv-1 (3.11)/(3.17); exact (3.8)/(3.22)
 enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
 // implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6)

@@ -5,21 +5,21 @@
 
 namespace lienewton::render {
 
-std::optional<HeatmapMetric> heatmap_metric_from_string(std::string_view name) {
-  if (name == "iterations") return HeatmapMetric::iterations;
-  if (name == "rate") return HeatmapMetric::rate;
-  if (name == "residual") return HeatmapMetric::residual;
-  return std::nullopt;
+Words words(HeatmapMetric metric) {
+  switch (metric) {
+    case HeatmapMetric::iterations: return {"iterations", "Iterations", "iterations", "iterations to converge", {}};
+    case HeatmapMetric::rate:
+      return {"rate", "Convergence rate r", "rate", "observed convergence rate (needs 3 residuals)", {}};
+    case HeatmapMetric::residual: return {"residual", "Final residual", "residual", "log10 of the final ‖f(y)‖", {}};
+  }
+  return {};
 }
 
-std::string_view to_string(HeatmapMetric metric) {
-  switch (metric) {
-    case HeatmapMetric::iterations: return "iterations";
-    case HeatmapMetric::rate: return "rate";
-    case HeatmapMetric::residual: return "residual";
-  }
-  return "unknown";
+std::optional<HeatmapMetric> heatmap_metric_from_string(std::string_view name) {
+  return from_api_name(kAllHeatmapMetrics, name);
 }
+
+std::string_view to_string(HeatmapMetric metric) { return words(metric).api; }
 
 void validate_size(std::string_view field, int value, bool zero_means_automatic) {
   if (zero_means_automatic && value == 0) return;

@@ -3,6 +3,8 @@
 #include <optional>
 #include <string_view>
 
+#include "core/vocabulary.hpp"
+
 namespace lienewton::render {
 
 inline constexpr int kMinImageSize = 64;
@@ -18,6 +20,8 @@ struct FramesOptions {
 enum class HeatmapMetric { iterations, rate, residual };
 inline constexpr HeatmapMetric kAllHeatmapMetrics[] = {HeatmapMetric::iterations, HeatmapMetric::rate,
                                                        HeatmapMetric::residual};
+// The metric's row of the vocabulary (core/vocabulary.hpp): its API name and its words.
+Words words(HeatmapMetric metric);
 std::optional<HeatmapMetric> heatmap_metric_from_string(std::string_view name);  // "iterations"|"rate"|"residual"
 std::string_view to_string(HeatmapMetric metric);
 

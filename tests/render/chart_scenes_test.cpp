@@ -92,10 +92,10 @@ TEST(WorkPrecisionScene, LegendNamesEverySeriesWithItsFittedOrder) {
   result.series[7].points[1].status = Status::max_iterations;
   const Figure figure = work_precision_scene(result, "work-precision", 1100, 700);
   const LineChart& chart = figure.panels[0].chart;
-  EXPECT_EQ(chart.series[0].label, "Euler, fixed point  p = 1.00");
+  EXPECT_EQ(chart.series[0].label, "Euler, Fixed point  p = 1.00");
   EXPECT_EQ(chart.series[3].label, "DIRK-CG2, Newton group, FD  p = 2.00");
   EXPECT_EQ(chart.series[5].label, "DIRK-CG2, Newton algebra, FD  p = -");
-  EXPECT_EQ(chart.series[7].label, "DIRK-CG2, fixed point  p = 2.00 (1 of 5 failed)");
+  EXPECT_EQ(chart.series[7].label, "DIRK-CG2, Fixed point  p = 2.00 (1 of 5 failed)");
   EXPECT_EQ(chart.series[7].x.size(), 4u);
   const DecodedImage image = draw(figure);
   const LineChartLayout layout = layout_line_chart(chart, figure.panels[0].frame);

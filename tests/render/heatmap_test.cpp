@@ -279,8 +279,12 @@ TEST(Heatmap, EmptySweepIsRejected) {
 
 // The PNG speaks the dashboard's words, not the API's: no "max_iterations" or "newton-group" in a legend.
 TEST(Heatmap, LegendAndTitlesUseWordsNotApiNames) {
-  for (Status s : kAllStatuses) {
-    const std::string word(short_name(s));
+  std::vector<std::string> names;
+  for (Status s : kAllStatuses) names.emplace_back(short_name(s));
+  for (Method m : kAllMethods) names.emplace_back(short_name(m));
+  for (Differential d : kAllDifferentials) names.emplace_back(short_name(d));
+  for (Integrator i : kAllIntegrators) names.emplace_back(short_name(i));
+  for (const std::string& word : names) {
     EXPECT_EQ(word.find('_'), std::string::npos) << word;
     EXPECT_FALSE(word.empty());
     for (char ch : word) EXPECT_LT(static_cast<unsigned char>(ch), 128) << word;  // the render font is ASCII

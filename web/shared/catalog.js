@@ -1,12 +1,13 @@
 // The server's vocabulary, loaded once for every panel: the "x-lienewton" extension of /openapi.json holds a
-// label, a short label and a description for each value of the API's enums (problem, method, differential,
-// integrator, linear_solver, status, heatmap_metric), the status colours and the heatmap renderer's colours.
+// label, a short label, a description and for some an explanation for each value of the API's enums (problem,
+// method, differential, integrator, linear_solver, globalization, stopping, predictor, stage_start, status,
+// heatmap_metric), the status colours and the heatmap renderer's colours.
 // Nothing here is copied from the server, so a new method or status shows up with its own words.
 const response = await fetch('/openapi.json');
 if (!response.ok) throw new Error(`/openapi.json answered HTTP ${response.status}`);
 export const catalog = (await response.json())['x-lienewton'];
 
-// The entries of one enum, in the server's order: {value, label, short, description, ...}.
+// The entries of one enum, in the server's order: {value, label, short, description, explanation?, ...}.
 export function entries(name) {
   const list = catalog.enums[name];
   if (!list) throw new Error(`/openapi.json publishes no labels for ${name}`);
