@@ -253,7 +253,7 @@ def main():
     entries = [e for e in entries if not only or e["name"] in only]
     if args.record:
         os.makedirs(ANSWERS, exist_ok=True)
-    failed, checked = [], 0
+    failed, checked, server_died = [], 0, False
     with tempfile.TemporaryFile() as log:
         server, port = start_server(os.path.realpath(args.server_bin), log)
         try:
@@ -267,6 +267,11 @@ def main():
                         found = check(name, run(), args.record)
                     except (OSError, ValueError, subprocess.SubprocessError, http.client.HTTPException) as e:
                         found = [f"{type(e).__name__}: {e}"]
+                        if isinstance(e, (ConnectionError, http.client.RemoteDisconnected)):
+                            try:  # a server that crashed may take a moment (a core dump) to exit
+                                server.wait(timeout=5)
+                            except subprocess.TimeoutExpired:
+                                pass
                     checked += 1
                     secs = time.monotonic() - start
                     if found:
@@ -276,6 +281,10 @@ def main():
                             print(f"    {line}")
                     else:
                         print(f"replay: {'recorded' if args.record else 'ok'} {name} ({secs:.2f} s)")
+                if server.poll() is not None:  # everything after would be "connection refused"
+                    server_died = True
+                    print(f"replay: FAIL the server exited with status {server.returncode} after {entry['name']}")
+                    break
         finally:
             server.terminate()
             try:
@@ -291,9 +300,10 @@ def main():
         kept = {os.path.basename(answer_path(n)) for e in entries for n in (e["name"], "cli-" + e["name"])}
         for stale in set(os.listdir(ANSWERS)) - kept:
             os.remove(os.path.join(ANSWERS, stale))
-    print(f"replay: {checked - len(failed)} of {checked} answers as recorded" if not args.record
+    planned = len(entries) + (sum("cli" in e for e in entries) if args.cli else 0)
+    print(f"replay: {checked - len(failed)} of {planned} answers as recorded" if not args.record
           else f"replay: {checked} answers recorded in {os.path.relpath(ANSWERS, ROOT)}")
-    return 1 if failed else 0
+    return 1 if failed or server_died else 0
 
 
 if __name__ == "__main__":
