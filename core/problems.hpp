@@ -5,6 +5,8 @@
 // dg_matrix(group, y) for the groups whose basis it knows; the others assemble dg's matrix column by column.
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
+#include <type_traits>
 
 #include "groups/so3_group.hpp"
 #include "groups/son_group.hpp"
@@ -50,9 +52,9 @@ struct PaperLinear {
   }
   // On the basis of so(N): y b_ab = y_:a e_b^T - y_:b e_a^T has superdiagonal entries only at (b-1, b)
   // and (a-1, a), so each column has at most two entries.
-  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup& group, const Eigen::MatrixXd& y) const {
     const int n = static_cast<int>(y.rows());
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * (n - 1) / 2, n * (n - 1) / 2);
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(group.dim(), group.dim());
     for (int a = 0, col = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b, ++col) {
         m(pair_index(n, b - 1, b), col) += y(b - 1, a);
@@ -81,13 +83,13 @@ struct PaperSine {
   }
   // On the basis of so(N), dy = y b_ab = y_:a e_b^T - y_:b e_a^T has rank 2, so with s y and s y y formed once
   // every column of the product rule is a sum of outer products: O(N^2) per column instead of O(N^3).
-  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup& group, const Eigen::MatrixXd& y) const {
     using Eigen::MatrixXd, Eigen::VectorXd;
     const int n = static_cast<int>(y.rows());
     const MatrixXd s = y.array().sin().matrix(), c = y.array().cos().matrix();
     const MatrixXd p = 2.0 * y - 5.0 * y * y;
     const MatrixXd sy = s * y, syy = sy * y;
-    MatrixXd m(n * (n - 1) / 2, n * (n - 1) / 2), du(n, n);
+    MatrixXd m(group.dim(), group.dim()), du(n, n);
     VectorXd ca_yb(n), cb_ya(n);
     for (int a = 0, col = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b, ++col) {
@@ -155,7 +157,28 @@ class VectorFieldOf final : public VectorField<G> {
   Problem problem_;
 };
 
-// The field of a request's problem on group G (rigid-body requires n = 3; validate() checks).
+// The groups each problem is defined on (validate() checks before make_field). The paper's problems are matrix
+// formulas with skew values: defined on every group of n x n matrices whose algebra holds the skew matrices
+// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone.
+template <class G>
+bool algebra_holds_skew_matrices(const G& group) {
+  Eigen::MatrixXd s = group.matrix(group.identity());
+  for (Eigen::Index i = 0; i < s.rows(); ++i)
+    for (Eigen::Index j = 0; j < s.cols(); ++j) s(i, j) = double(j - i);
+  return group.matrix(group.hat(group.vee(group.element(s)))) == s;
+}
+template <class G>
+bool defined_on(ProblemKind kind, const G& group) {
+  if (kind == ProblemKind::rigid_body) return std::is_same_v<G, SO3Group>;
+  return algebra_holds_skew_matrices(group);
+}
+// The one n a problem is written for, if any: rigid-body's 3 (its group's index).
+inline std::optional<int> required_index(ProblemKind kind) {
+  if (kind == ProblemKind::rigid_body) return 3;
+  return std::nullopt;
+}
+
+// The field of a request's problem on group G (one it is defined_on; validate() checks).
 template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb) {
   switch (kind) {
