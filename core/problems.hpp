@@ -1,6 +1,7 @@
 #pragma once
 // The test problems: vector fields g: G -> g of y' = y g(y) with their exact differentials
-// dg_y(U) = d/dt g(y exp(tU)) at t = 0 (the tangent at y in direction U is y U).
+// dg_y(U) = d/dt g(y exp(tU)) at t = 0, given U and the tangent dy = d/dt y exp(tU) at t = 0 (the group's
+// tangent(y, U): y U on a group of matrices under multiplication, U under addition).
 // Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates. A problem may add
 // dg_matrix(group, y) for the groups whose basis it knows; the others assemble dg's matrix column by column.
 #include <Eigen/Dense>
@@ -47,8 +48,8 @@ struct PaperLinear {
     return out;
   }
   template <class M>
-  M dg(const M& y, const M& u) const {
-    return g(M(y * u));
+  M dg(const M&, const M&, const M& dy) const {
+    return g(dy);
   }
   // On the basis of so(N): y b_ab = y_:a e_b^T - y_:b e_a^T has superdiagonal entries only at (b-1, b)
   // and (a-1, a), so each column has at most two entries.
@@ -72,8 +73,7 @@ struct PaperSine {
     return u - u.transpose();
   }
   template <class M>
-  M dg(const M& y, const M& dir) const {
-    const M dy = y * dir;
+  M dg(const M& y, const M&, const M& dy) const {
     const M s = y.array().sin().matrix();
     const M ds = (y.array().cos() * dy.array()).matrix();
     const M p = 2.0 * y - 5.0 * y * y;
@@ -116,7 +116,7 @@ struct RigidBody {
     return embed(body_velocity(Eigen::Matrix3d(y).transpose() * params.momentum));
   }
   template <class M>
-  M dg(const M& y, const M& dir) const {  // d/dt of y^T m along y' = y dir is dir^T y^T m
+  M dg(const M& y, const M& dir, const M&) const {  // d/dt of y^T m along y' = y dir (on SO(3)) is dir^T y^T m
     return embed(body_velocity(Eigen::Matrix3d(dir).transpose() * (Eigen::Matrix3d(y).transpose() * params.momentum)));
   }
   // In rotation-vector coordinates dg_y(u) = -I^-1 (u x M) = I^-1 hat(M) u with M = y^T m.
@@ -141,7 +141,8 @@ class VectorFieldOf final : public VectorField<G> {
   VectorFieldOf(G group, Problem problem) : group_(group), problem_(std::move(problem)) {}
   Vector g(const Element& y) const override { return group_.vee(problem_.g(y)); }
   Vector dg(const Element& y, const Vector& u) const override {
-    return group_.vee(problem_.dg(y, Element(group_.hat(u))));
+    const Element dir = group_.hat(u);
+    return group_.vee(problem_.dg(y, dir, Element(group_.tangent(y, dir))));
   }
   typename G::Operator dg_matrix(const G& group, const Element& y) const override {
     if constexpr (requires { problem_.dg_matrix(group, y); }) {  // the problem's structured matrix on G's basis

@@ -78,6 +78,7 @@ inline Status worse(Status a, Status b) { return a == Status::converged ? b : a;
 
 }  // namespace integration
 
+// integrate(): the request's integrator, every stage equation solved by the request's method (section 6).
 template <LieGroup G>
 IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const Eigen::MatrixXd& y0,
                              const StepCallback& on_step) {

@@ -10,7 +10,8 @@
 //   and what the group owns about its log: kLogRadius (log is defined for angle(...) < kLogRadius),
 //   kLogMargin (how close to the radius log still answers), defect(y), the distance of y from the group
 //   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor);
-//   principal_angle(theta), the angle of exp(v) from the angle theta of v (wrapped into [0, kLogRadius] on SO(N)),
+//   tangent(y, U) = d/dt y exp(tU) at t = 0, as an Element-shaped matrix (y U on a matrix group), which the
+//   problems' differentials take; principal_angle(theta), the angle of exp(v) from the angle theta of v (wrapped into [0, kLogRadius] on SO(N)),
 //   and the words a reason uses for them: kAngleName ("rotation angle"), kLogBoundaryName ("pi");
 // and what the requests need of it: element(m) and matrix(y) convert between a request's matrix (rows) and an
 // Element; random(seed), the seeded start; not_an_element(m, name) and not_reachable(y0, z), why a request's
@@ -52,6 +53,7 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
   { g.defect(y) } -> std::same_as<double>;
   { g.project(y) } -> std::convertible_to<typename G::Element>;
   { g.principal_angle(angle) } -> std::same_as<double>;
+  { g.tangent(y, y) } -> std::convertible_to<typename G::Element>;
   { G::kLogRadius } -> std::convertible_to<double>;
   { G::kLogMargin } -> std::convertible_to<double>;
   { G::kAngleName } -> std::convertible_to<std::string>;

@@ -22,6 +22,7 @@ struct RotationFacts {
   // ||m^T m - I||_F above which a request's z or y0 is refused.
   static constexpr double kMemberTolerance = 1e-10;
 
+  Element tangent(const Element& y, const Element& u) const { return y * u; }  // d/dt y exp(tU) at t = 0
   Element element(const Eigen::MatrixXd& m) const { return Element(m); }
   Eigen::MatrixXd matrix(const Element& y) const { return Eigen::MatrixXd(y); }
   // The paper's qr(rand(N, N)), bit for bit (start_point.hpp).

@@ -300,6 +300,22 @@ TYPED_TEST(LieGroupProperties, ProjectionOfAPerturbedElementIsAMember) {
   }
 }
 
+// tangent(y, U) = d/dt y exp(tU) at t = 0 (what the problems' differentials take), against central differences of
+// times_exp at t = 1e-5: truncation ~t^2 and rounding ~eps/t, so <= 1e-8 relative.
+TYPED_TEST(LieGroupProperties, TangentIsTheDerivativeOfTimesExp) {
+  using M = typename TestFixture::M;
+  using V = typename TestFixture::V;
+  const auto& g = this->g;
+  const double t = 1e-5;
+  for (int trial = 0; trial < 10; ++trial) {
+    const M y = g.exp(this->random_vector(0.1, 3.0));
+    const V u = this->random_direction();
+    const M exact = g.tangent(y, M(g.hat(u)));
+    const M central = (g.times_exp(y, V(t * u)) - g.times_exp(y, V(-t * u))) / (2 * t);
+    EXPECT_LE((central - exact).norm() / std::max(1.0, exact.norm()), 1e-8) << "trial " << trial;
+  }
+}
+
 // The identity is at the full log radius from log's boundary, inside the domain, its own component's identity; the
 // principal angle of a v inside the domain is v's own angle, and every principal angle lies in [0, kLogRadius].
 TYPED_TEST(LieGroupProperties, LogBoundaryAndComponentIdentity) {

@@ -1,8 +1,9 @@
 #pragma once
 // The abelian group of real n x n matrices under addition, registered as "Rnxn" the way a real group is: this
 // header and its one registry line below are all it takes for every request (solve, sweep, basins, integrate,
-// work-precision) to run on it. exp and log are the identity (coordinates: the entries, column by column), ad = 0
-// and dexp = dexpinv = Id, so both Newton versions are classical Newton on f(y) = y - z - h g(y); its algebra
+// work-precision) to run on it. exp and log are the identity (coordinates: the entries, column by column), ad = 0,
+// dexp = dexpinv = Id and the tangent at y in direction U is U, so both Newton versions are classical Newton on
+// f(y) = y - z - h g(y); its algebra
 // holds the skew matrices, so the paper's two problems are defined on it. No production path names it.
 #include <Eigen/Dense>
 #include <cstdint>
@@ -56,6 +57,7 @@ struct MatrixSumGroup {
   double defect(const Element&) const { return 0.0; }
   Element project(const Element& y) const { return y; }
   double principal_angle(double theta) const { return theta; }
+  Element tangent(const Element&, const Element& u) const { return u; }  // y + t U
 
   // Every finite n x n matrix is an element, reachable from any other; the seeded start has entries in [0, 1).
   Element element(const Eigen::MatrixXd& m) const { return m; }

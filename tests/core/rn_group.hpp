@@ -52,6 +52,7 @@ struct RnGroup {
   double defect(const Element&) const { return 0.0; }
   Element project(const Element& y) const { return y; }
   double principal_angle(double theta) const { return theta; }
+  Element tangent(const Element&, const Element& u) const { return u; }  // y + t u
 
   // A request's matrix is a column of n entries; every finite one is an element, reachable from any other.
   Element element(const Eigen::MatrixXd& m) const { return m.col(0); }
