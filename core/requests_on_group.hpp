@@ -31,7 +31,8 @@ SolveResult solve_on(const G& group, const SolveRequest& req, const TraceCallbac
 template <LieGroup G>
 BasinResult basins_on(const G& group, const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   const BasinGrid grid = basin_grid(req);
-  const BasinPlane plane{grid.b1, grid.b2, req.size, grid.radius, req.methods, req.solve.solver, req.threads, req.shard};
+  const BasinPlane plane{grid.b1,      grid.b2,          req.size,    grid.radius,
+                         req.methods,  req.solve.solver, req.threads, req.shard};
   const auto field = make_field(group, req.solve.problem.kind, req.solve.problem.rigid_body);
   const auto eq = Equation<G>::implicit_euler(group, group.element(req.solve.problem.start()), req.solve.h, *field);
   BasinResult result = basin_map(eq, plane, on_row, farm);

@@ -1,5 +1,5 @@
 #pragma once
-// What the solvers need of a Lie group G, as a concept every group static_asserts:
+// What the solvers and the requests need of a Lie group G, as a concept every group static_asserts:
 //   Element (group element), Vector (algebra coordinates on a basis of dimension dim()), Operator (dim x dim
 //   matrix on coordinates), Spectral (what exp/log computed that dexp/dexpinv can reuse: the decomposition of
 //   z^-1 y serves both log and dexpinv);
@@ -11,7 +11,8 @@
 //   kLogMargin (how close to the radius log still answers), defect(y), the distance of y from the group
 //   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor);
 //   tangent(y, U) = d/dt y exp(tU) at t = 0, as an Element-shaped matrix (y U on a matrix group), which the
-//   problems' differentials take; principal_angle(theta), the angle of exp(v) from the angle theta of v (wrapped into [0, kLogRadius] on SO(N)),
+//   problems' differentials take; principal_angle(theta), the angle of exp(v) from the angle theta of v
+//   (wrapped into [0, kLogRadius] on SO(N)),
 //   and the words a reason uses for them: kAngleName ("rotation angle"), kLogBoundaryName ("pi");
 // and what the requests need of it: element(m) and matrix(y) convert between a request's matrix (rows) and an
 // Element; random(seed), the seeded start; not_an_element(m, name) and not_reachable(y0, z), why a request's
