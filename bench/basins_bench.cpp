@@ -59,7 +59,7 @@ BENCHMARK_CAPTURE(Basins, SO8, 8)->Name("Basins_SO8")->Arg(128)->Unit(benchmark:
 void BasinsBaseline(benchmark::State& state) {
   const BasinRequest r = map_request(3, static_cast<int>(state.range(0)));
   const Eigen::MatrixXd z = start_point(3, r.solve.problem.seed);
-  const std::vector<double> axis = basin_axis(r.size, r.radius);
+  const std::vector<double> axis = basin_grid(r).axis;
   std::size_t roots_found = 0;
   for (auto _ : state) {
     std::vector<Eigen::Matrix3d> roots;

@@ -20,7 +20,7 @@ namespace lienewton {
 struct BasinPlane {
   Eigen::VectorXd b1, b2;  // unit directions, algebra coordinates
   int size = kDefaultBasinSize;
-  double radius = std::numbers::pi;
+  std::optional<double> radius;  // r; absent: G's log radius
   std::vector<Method> methods;
   SolverOptions solver;  // basin_map() turns off per-iterate timing and iterates
   int threads = 0;
@@ -60,7 +60,8 @@ class BasinMap {
       : group_(eq.group()), eq_(eq), plane_(untimed(plane)), on_row_(on_row), farm_(farm), size_(plane.size),
         methods_(static_cast<int>(plane.methods.size())), rows_(basin_shard_rows(plane.size, plane.shard)),
         b1_(plane.b1), b2_(plane.b2) {
-    result_.grid = {basin_axis(size_, plane.radius), plane.radius, plane.b1, plane.b2, Eigen::MatrixXd(eq.z())};
+    const double radius = plane.radius.value_or(G::kLogRadius);
+    result_.grid = {basin_axis(size_, radius), radius, plane.b1, plane.b2, group_.matrix(eq.z())};
     result_.shard = plane.shard;
   }
 
@@ -110,7 +111,7 @@ class BasinMap {
     Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
     slot.status = r.status;
     slot.iterations = r.total_iterations();
-    if (r.status == Status::converged) slot.y = Element(r.y);
+    if (r.status == Status::converged) slot.y = group_.element(r.y);
     return true;
   }
 
@@ -179,7 +180,7 @@ class BasinMap {
       if (same_root(group_, root_ys_[i], y)) return static_cast<int>(i);
     BasinRoot root;
     root.id = static_cast<int>(root_ys_.size());
-    root.y = y;
+    root.y = group_.matrix(y);
     const auto p = eq_.at(y, Equation<G>::Need::residual);
     root.residual = p.residual;
     root.distance_from_z = p.v.norm();

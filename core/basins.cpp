@@ -2,19 +2,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <set>
 
 #include "basin_map.hpp"
-#include "groups/polar_factor.hpp"
-#include "groups/with_group.hpp"
-#include "problems.hpp"
+#include "group_registry.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
 namespace {
 
-constexpr double kMaxRadius = 100.0;  // exp is periodic: a larger plane only repeats itself
+constexpr double kMaxRadius = 100.0;  // exp of a compact group is periodic: a larger plane only repeats itself
 // cos of the angle below which B1 and B2 count as parallel (the plane would be a line).
 constexpr double kParallelCosine = 1.0 - 1e-12;
 
@@ -24,11 +23,12 @@ Eigen::VectorXd direction(const std::optional<Eigen::VectorXd>& given, int dim, 
   return Eigen::VectorXd::Unit(dim, index);
 }
 
-void check_direction(const std::optional<Eigen::VectorXd>& b, const std::string& field, int dim) {
+void check_direction(const std::optional<Eigen::VectorXd>& b, const std::string& field, int dim,
+                     const std::string& dim_formula) {
   if (!b) return;
   if (b->size() != dim)
-    validation::unprocessable(field, field + " must have " + std::to_string(dim) +
-                                         " coordinates (the dimension N(N-1)/2 of the algebra)");
+    validation::unprocessable(field, field + " must have " + std::to_string(dim) + " coordinates (the dimension " +
+                                         dim_formula + " of the algebra)");
   if (!b->allFinite()) validation::invalid(field, field + " must have finite coordinates");
   if (!(b->norm() > 0)) validation::unprocessable(field, field + " must not be zero");
 }
@@ -36,11 +36,8 @@ void check_direction(const std::optional<Eigen::VectorXd>& b, const std::string&
 // The request-model accessors: the one place that knows how a SolveRequest spells its problem and options.
 int dimension_of(const BasinRequest& req) { return req.solve.problem.n; }
 Eigen::MatrixXd z_of(const BasinRequest& req) { return req.solve.problem.start(); }
-SolverOptions solver_of(const BasinRequest& req) { return req.solve.solver; }
-template <class G>
-std::unique_ptr<VectorField<G>> field_of(const G& group, const BasinRequest& req) {
-  return make_field(group, req.solve.problem.kind, req.solve.problem.rigid_body);
-}
+const GroupFamily& family_of(const BasinRequest& req) { return group_family(req.solve.problem.group); }
+double radius_of(const BasinRequest& req) { return req.radius.value_or(family_of(req).log_radius()); }
 
 }  // namespace
 
@@ -56,9 +53,10 @@ std::vector<double> basin_axis(int size, double radius) {
 }
 
 BasinGrid basin_grid(const BasinRequest& req) {
-  const int dim = dimension_of(req) * (dimension_of(req) - 1) / 2;
-  return {basin_axis(req.size, req.radius), req.radius, direction(req.b1, dim, 0), direction(req.b2, dim, 1),
-          orthogonal_polar_factor(z_of(req))};
+  const GroupFamily& family = family_of(req);
+  const int n = dimension_of(req), dim = family.algebra_dim(n);
+  return {basin_axis(req.size, radius_of(req)), radius_of(req), direction(req.b1, dim, 0), direction(req.b2, dim, 1),
+          family.project(n, z_of(req)), family.name()};
 }
 
 void validate(const BasinRequest& req) {
@@ -66,7 +64,17 @@ void validate(const BasinRequest& req) {
   equation.y0.reset();  // every pixel has its own start
   validate(equation);
   const int n = dimension_of(req);
-  if (n < 3) validation::unprocessable("n", "a basin map needs a plane in the algebra: n must be at least 3 (so(2) has dimension 1)");
+  const GroupFamily& family = family_of(req);
+  const int dim = family.algebra_dim(n);
+  if (dim < 2) {
+    int least = n + 1;
+    while (family.algebra_dim(least) < 2) ++least;
+    std::string algebra = family.title(n);
+    std::transform(algebra.begin(), algebra.end(), algebra.begin(), [](unsigned char c) { return std::tolower(c); });
+    validation::unprocessable("n", "a basin map needs a plane in the algebra: n must be at least " +
+                                       std::to_string(least) + " (" + algebra + " has dimension " +
+                                       std::to_string(dim) + ")");
+  }
   if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
   for (std::size_t i = 0; i < req.methods.size(); ++i)
     if (std::find(req.methods.begin(), req.methods.begin() + static_cast<std::ptrdiff_t>(i), req.methods[i]) !=
@@ -76,11 +84,11 @@ void validate(const BasinRequest& req) {
   if (req.size > kMaxBasinSize)
     validation::unprocessable("size", "size " + std::to_string(req.size) + " is beyond the largest basin map, " +
                                           std::to_string(kMaxBasinSize) + " x " + std::to_string(kMaxBasinSize));
-  if (!std::isfinite(req.radius) || !(req.radius > 0) || req.radius > kMaxRadius)
+  const double radius = radius_of(req);
+  if (!std::isfinite(radius) || !(radius > 0) || radius > kMaxRadius)
     validation::invalid("r", "r must be a finite number in (0, 100]");
-  const int dim = n * (n - 1) / 2;
-  check_direction(req.b1, "b1", dim);
-  check_direction(req.b2, "b2", dim);
+  check_direction(req.b1, "b1", dim, family.algebra_dimension());
+  check_direction(req.b2, "b2", dim, family.algebra_dimension());
   const Eigen::VectorXd b1 = direction(req.b1, dim, 0), b2 = direction(req.b2, dim, 1);
   if (std::abs(b1.dot(b2)) > kParallelCosine)
     validation::unprocessable(req.b2 ? "b2" : "b1", "b1 and b2 are parallel: they span no plane");
@@ -93,14 +101,7 @@ void validate(const BasinRequest& req) {
 BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   validate(req);
   const auto start = std::chrono::steady_clock::now();
-  const BasinGrid grid = basin_grid(req);
-  const BasinPlane plane{grid.b1, grid.b2, req.size, req.radius, req.methods, solver_of(req), req.threads, req.shard};
-  BasinResult result = with_group(dimension_of(req), [&](const auto& group) {
-    using G = std::decay_t<decltype(group)>;
-    const auto field = field_of(group, req);
-    const auto eq = Equation<G>::implicit_euler(group, typename G::Element(z_of(req)), req.solve.h, *field);
-    return basin_map(eq, plane, on_row, farm);
-  });
+  BasinResult result = family_of(req).basins(req, on_row, farm);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.request_key = req.request_key;
   return result;
@@ -149,7 +150,7 @@ std::vector<Method> methods_of(const BasinResult& map) {
 }
 
 bool same_grid(const BasinGrid& a, const BasinGrid& b) {
-  return a.axis == b.axis && a.radius == b.radius && a.b1 == b.b1 && a.b2 == b.b2 && a.z == b.z;
+  return a.axis == b.axis && a.radius == b.radius && a.b1 == b.b1 && a.b2 == b.b2 && a.z == b.z && a.group == b.group;
 }
 
 // Checks that parts are every shard of one map, each once and complete; returns, per row of the map, the part
@@ -202,37 +203,33 @@ BasinResult merge_shards(const std::vector<BasinResult>& parts) {
   std::vector<std::vector<int>> global_id(parts.size());
   std::vector<std::size_t> next_row(parts.size(), 0);
   for (std::size_t k = 0; k < parts.size(); ++k) global_id[k].assign(parts[k].roots.size(), -1);
-  with_group(static_cast<int>(merged.grid.z.rows()), [&](const auto& group) {
-    using Element = typename std::decay_t<decltype(group)>::Element;
-    std::vector<Element> root_ys;
-    const auto global_root = [&](std::size_t k, int local, std::vector<int>& new_roots) {
-      if (local < 0 || local >= static_cast<int>(parts[k].roots.size()))
-        validation::invalid("shard", "a pixel of shard " + std::to_string(parts[k].shard->index) + " names no root");
-      int& id = global_id[k][static_cast<std::size_t>(local)];
-      if (id >= 0) return id;
-      const BasinRoot& root = parts[k].roots[static_cast<std::size_t>(local)];
-      const Element y(root.y);
-      for (std::size_t i = 0; i < root_ys.size() && id < 0; ++i)
-        if (same_root(group, root_ys[i], y)) id = static_cast<int>(i);
-      if (id >= 0) return id;
-      id = static_cast<int>(root_ys.size());
-      root_ys.push_back(y);
-      merged.roots.push_back(root);
-      merged.roots.back().id = id;
-      new_roots.push_back(id);
-      return id;
-    };
-    for (std::size_t r = 0; r < owner.size(); ++r) {
-      const std::size_t k = owner[r];
-      BasinRow row = parts[k].rows[next_row[k]++];
-      row.new_roots.clear();
-      for (std::size_t column = 0; column < merged.grid.axis.size(); ++column)
-        for (auto& pixels : row.pixels)
-          if (pixels[column].status == Status::converged)
-            pixels[column].root = global_root(k, pixels[column].root, row.new_roots);
-      merged.rows.push_back(std::move(row));
-    }
-  });
+  const GroupFamily& family = group_family(merged.grid.group);
+  const int n = static_cast<int>(merged.grid.z.rows());
+  const auto global_root = [&](std::size_t k, int local, std::vector<int>& new_roots) {
+    if (local < 0 || local >= static_cast<int>(parts[k].roots.size()))
+      validation::invalid("shard", "a pixel of shard " + std::to_string(parts[k].shard->index) + " names no root");
+    int& id = global_id[k][static_cast<std::size_t>(local)];
+    if (id >= 0) return id;
+    const BasinRoot& root = parts[k].roots[static_cast<std::size_t>(local)];
+    for (std::size_t i = 0; i < merged.roots.size() && id < 0; ++i)
+      if (family.same_root(n, merged.roots[i].y, root.y)) id = static_cast<int>(i);
+    if (id >= 0) return id;
+    id = static_cast<int>(merged.roots.size());
+    merged.roots.push_back(root);
+    merged.roots.back().id = id;
+    new_roots.push_back(id);
+    return id;
+  };
+  for (std::size_t r = 0; r < owner.size(); ++r) {
+    const std::size_t k = owner[r];
+    BasinRow row = parts[k].rows[next_row[k]++];
+    row.new_roots.clear();
+    for (std::size_t column = 0; column < merged.grid.axis.size(); ++column)
+      for (auto& pixels : row.pixels)
+        if (pixels[column].status == Status::converged)
+          pixels[column].root = global_root(k, pixels[column].root, row.new_roots);
+    merged.rows.push_back(std::move(row));
+  }
   merged.methods = basin_summaries(merged.rows, methods);
   return merged;
 }

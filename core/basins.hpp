@@ -11,7 +11,6 @@
 #include <Eigen/Dense>
 #include <array>
 #include <functional>
-#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -32,7 +31,7 @@ struct BasinRequest {
   SolveRequest solve{};  // its method, y0 and include_iterates are not used
   std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
   int size = kDefaultBasinSize;     // pixels per side
-  double radius = std::numbers::pi; // r
+  std::optional<double> radius;     // r; absent: the group's log radius (pi on SO(N))
   // B1, B2 as algebra coordinates (basis E_ij - E_ji), normalised before use; default the first two basis
   // elements.
   std::optional<Eigen::VectorXd> b1{}, b2{};
@@ -80,7 +79,8 @@ struct BasinGrid {
   std::vector<double> axis;  // pixel-centre coordinates, basin_axis(size, radius)
   double radius = 0;         // r
   Eigen::VectorXd b1, b2;    // the unit directions used (algebra coordinates)
-  Eigen::MatrixXd z;         // the equation's z (after the z rule: its orthogonal polar factor)
+  Eigen::MatrixXd z;         // the equation's z (after the z rule: the group's element nearest to it)
+  std::string group = ProblemSpec{}.group;  // the family of z's group (its n: z's size)
 };
 
 struct BasinResult {
@@ -97,7 +97,7 @@ struct BasinResult {
 };
 
 // Checks the request; throws RequestError naming the field (size beyond kMaxBasinSize, radius, b1/b2 of the
-// wrong length, zero or parallel, N = 2 whose algebra has one dimension, ...).
+// wrong length, zero or parallel, an algebra of one dimension, ...).
 void validate(const BasinRequest& request);
 
 // Called in row order, serialised, as each row is classified; return false to stop the map.

@@ -1,17 +1,17 @@
 #include "problem_spec.hpp"
 
-#include "start_point.hpp"
+#include "group_registry.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
 
-Eigen::MatrixXd ProblemSpec::start() const { return z ? *z : start_point(n, seed); }
+Eigen::MatrixXd ProblemSpec::start() const { return z ? *z : group_family(group).random(n, seed); }
 
 void validate(const ProblemSpec& problem) {
   validation::check(fields::n, problem.n, "n");
-  validation::check_problem_dimension(problem.kind, problem.n);
+  validation::check_problem_domain(problem);
   validation::check_rigid_body(problem.rigid_body);
-  validation::check_start_point(problem.z, problem.n);
+  validation::check_start_point(problem);
 }
 
 }  // namespace lienewton

@@ -1,6 +1,6 @@
 #pragma once
-// What a request solves: the test problem on SO(n), its parameters and the start point z (drawn from seed when
-// absent). Shared by solve, sweep, integrate and work-precision.
+// What a request solves: the test problem on a group (SO(n) by default), its parameters and the start point z
+// (the group's random element from seed when absent). Shared by solve, sweep, integrate and work-precision.
 #include <Eigen/Dense>
 #include <cstdint>
 #include <optional>
@@ -16,14 +16,14 @@ struct ProblemSpec {
   std::string group = "SO";  // the Lie group by its registered name; n is its index, as in SO(n)
   int n = 3;
   std::uint64_t seed = 1;
-  std::optional<Eigen::MatrixXd> z{};  // start point; when absent, start_point(n, seed)
+  std::optional<Eigen::MatrixXd> z{};  // start point; when absent, the group's random element from seed
   RigidBodyParams rigid_body{};
 
   // z, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;
 };
 
-// Checks n, that the problem is defined on SO(n), the problem's parameters and z; throws RequestError.
+// Checks n, the group, that the problem is defined on it, the problem's parameters and z; throws RequestError.
 void validate(const ProblemSpec& problem);
 
 }  // namespace lienewton

@@ -1,10 +1,13 @@
 #pragma once
 // The test problems: vector fields g: G -> g of y' = y g(y) with their exact differentials
-// dg_y(U) = d/dt g(y exp(tU)) at t = 0 (the tangent at y in direction U is y U).
+// dg_y(U) = d/dt g(y exp(tU)) at t = 0, given U and the tangent dy = d/dt y exp(tU) at t = 0 (the group's
+// tangent(y, U): y U on a group of matrices under multiplication, U under addition).
 // Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates. A problem may add
 // dg_matrix(group, y) for the groups whose basis it knows; the others assemble dg's matrix column by column.
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
+#include <type_traits>
 
 #include "groups/so3_group.hpp"
 #include "groups/son_group.hpp"
@@ -45,14 +48,14 @@ struct PaperLinear {
     return out;
   }
   template <class M>
-  M dg(const M& y, const M& u) const {
-    return g(M(y * u));
+  M dg(const M&, const M&, const M& dy) const {
+    return g(dy);
   }
   // On the basis of so(N): y b_ab = y_:a e_b^T - y_:b e_a^T has superdiagonal entries only at (b-1, b)
   // and (a-1, a), so each column has at most two entries.
-  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup& group, const Eigen::MatrixXd& y) const {
     const int n = static_cast<int>(y.rows());
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * (n - 1) / 2, n * (n - 1) / 2);
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(group.dim(), group.dim());
     for (int a = 0, col = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b, ++col) {
         m(pair_index(n, b - 1, b), col) += y(b - 1, a);
@@ -70,8 +73,7 @@ struct PaperSine {
     return u - u.transpose();
   }
   template <class M>
-  M dg(const M& y, const M& dir) const {
-    const M dy = y * dir;
+  M dg(const M& y, const M&, const M& dy) const {
     const M s = y.array().sin().matrix();
     const M ds = (y.array().cos() * dy.array()).matrix();
     const M p = 2.0 * y - 5.0 * y * y;
@@ -81,13 +83,13 @@ struct PaperSine {
   }
   // On the basis of so(N), dy = y b_ab = y_:a e_b^T - y_:b e_a^T has rank 2, so with s y and s y y formed once
   // every column of the product rule is a sum of outer products: O(N^2) per column instead of O(N^3).
-  Eigen::MatrixXd dg_matrix(const SONGroup&, const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd dg_matrix(const SONGroup& group, const Eigen::MatrixXd& y) const {
     using Eigen::MatrixXd, Eigen::VectorXd;
     const int n = static_cast<int>(y.rows());
     const MatrixXd s = y.array().sin().matrix(), c = y.array().cos().matrix();
     const MatrixXd p = 2.0 * y - 5.0 * y * y;
     const MatrixXd sy = s * y, syy = sy * y;
-    MatrixXd m(n * (n - 1) / 2, n * (n - 1) / 2), du(n, n);
+    MatrixXd m(group.dim(), group.dim()), du(n, n);
     VectorXd ca_yb(n), cb_ya(n);
     for (int a = 0, col = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b, ++col) {
@@ -114,7 +116,7 @@ struct RigidBody {
     return embed(body_velocity(Eigen::Matrix3d(y).transpose() * params.momentum));
   }
   template <class M>
-  M dg(const M& y, const M& dir) const {  // d/dt of y^T m along y' = y dir is dir^T y^T m
+  M dg(const M& y, const M& dir, const M&) const {  // d/dt of y^T m along y' = y dir (on SO(3)) is dir^T y^T m
     return embed(body_velocity(Eigen::Matrix3d(dir).transpose() * (Eigen::Matrix3d(y).transpose() * params.momentum)));
   }
   // In rotation-vector coordinates dg_y(u) = -I^-1 (u x M) = I^-1 hat(M) u with M = y^T m.
@@ -139,7 +141,8 @@ class VectorFieldOf final : public VectorField<G> {
   VectorFieldOf(G group, Problem problem) : group_(group), problem_(std::move(problem)) {}
   Vector g(const Element& y) const override { return group_.vee(problem_.g(y)); }
   Vector dg(const Element& y, const Vector& u) const override {
-    return group_.vee(problem_.dg(y, Element(group_.hat(u))));
+    const Element dir = group_.hat(u);
+    return group_.vee(problem_.dg(y, dir, Element(group_.tangent(y, dir))));
   }
   typename G::Operator dg_matrix(const G& group, const Element& y) const override {
     if constexpr (requires { problem_.dg_matrix(group, y); }) {  // the problem's structured matrix on G's basis
@@ -155,7 +158,28 @@ class VectorFieldOf final : public VectorField<G> {
   Problem problem_;
 };
 
-// The field of a request's problem on group G (rigid-body requires n = 3; validate() checks).
+// The groups each problem is defined on (validate() checks before make_field). The paper's problems are matrix
+// formulas with skew values: defined on every group of n x n matrices whose algebra holds the skew matrices
+// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone.
+template <class G>
+bool algebra_holds_skew_matrices(const G& group) {
+  Eigen::MatrixXd s = group.matrix(group.identity());
+  for (Eigen::Index i = 0; i < s.rows(); ++i)
+    for (Eigen::Index j = 0; j < s.cols(); ++j) s(i, j) = double(j - i);
+  return group.matrix(group.hat(group.vee(group.element(s)))) == s;
+}
+template <class G>
+bool defined_on(ProblemKind kind, const G& group) {
+  if (kind == ProblemKind::rigid_body) return std::is_same_v<G, SO3Group>;
+  return algebra_holds_skew_matrices(group);
+}
+// The one n a problem is written for, if any: rigid-body's 3 (its group's index).
+inline std::optional<int> required_index(ProblemKind kind) {
+  if (kind == ProblemKind::rigid_body) return 3;
+  return std::nullopt;
+}
+
+// The field of a request's problem on group G (one it is defined_on; validate() checks).
 template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb) {
   switch (kind) {

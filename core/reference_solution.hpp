@@ -3,14 +3,13 @@
 // exact dexpinv, at a step far below the integrators' (kReferenceStepsPerUnit steps per unit of time).
 #include <Eigen/Dense>
 
-#include "options.hpp"
-#include "rigid_body_params.hpp"
+#include "problem_spec.hpp"
 
 namespace lienewton {
 
 inline constexpr int kReferenceStepsPerUnit = 1024;
 
-Eigen::MatrixXd reference_solution(ProblemKind problem, const RigidBodyParams& rb, const Eigen::MatrixXd& y0,
-                                   double t_end);
+// The problem's flow on its group from y0 (an element of it) to t_end.
+Eigen::MatrixXd reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end);
 
 }  // namespace lienewton

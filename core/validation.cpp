@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "group_registry.hpp"
+#include "problems.hpp"
+
 namespace lienewton::validation {
 
 void check(const fields::NumberField& field, double x, const std::string& path) {
@@ -12,9 +15,14 @@ void check(const fields::IntegerField& field, long long x, const std::string& pa
   if (!field.contains(x)) invalid(path, field.message(path));
 }
 
-void check_problem_dimension(ProblemKind problem, int n, const std::string& field) {
-  if (problem == ProblemKind::rigid_body && n != 3)
-    unprocessable(field, "rigid-body is a problem on SO(3): n must be 3, got " + std::to_string(n));
+void check_problem_domain(const ProblemSpec& problem) {
+  const GroupFamily& family = group_family(problem.group);
+  const std::string name(to_string(problem.kind));
+  const int n = required_index(problem.kind).value_or(problem.n);
+  if (!family.defines(problem.kind, n)) unprocessable("group", name + " is not defined on " + family.title(problem.n));
+  if (n != problem.n)
+    unprocessable("n", name + " is a problem on " + family.title(n) + ": n must be " + std::to_string(n) + ", got " +
+                           std::to_string(problem.n));
 }
 
 void check_rigid_body(const RigidBodyParams& p) {
@@ -23,23 +31,25 @@ void check_rigid_body(const RigidBodyParams& p) {
   if (!p.momentum.allFinite()) invalid("rigid_body.momentum", "rigid_body.momentum must be three finite numbers");
 }
 
-void check_start_point(const std::optional<Eigen::MatrixXd>& z, int n) {
+void check_start_point(const ProblemSpec& problem) {
+  const auto& z = problem.z;
   if (!z) return;
+  const int n = problem.n;
   if (z->rows() != n || z->cols() != n) invalid("z", "z must be an n x n array of rows");
   if (!z->allFinite()) invalid("z", "z must have finite entries");
-  const double orth = (z->transpose() * *z - Eigen::MatrixXd::Identity(n, n)).norm();
-  if (!(orth <= 1e-10)) unprocessable("z", "z must be orthogonal to 1e-10 (||z^T z - I||_F = " + std::to_string(orth) + ")");
+  const std::string why = group_family(problem.group).not_an_element(n, *z, "z");
+  if (!why.empty()) unprocessable("z", why);
 }
 
-void check_start_guess(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) {
+void check_start_guess(const ProblemSpec& problem, const Eigen::MatrixXd& y0) {
+  const Eigen::MatrixXd z = problem.start();
   const auto n = z.rows();
   if (y0.rows() != n || y0.cols() != n) invalid("y0", "y0 must be an n x n array of rows");
   if (!y0.allFinite()) invalid("y0", "y0 must have finite entries");
-  const double orth = (y0.transpose() * y0 - Eigen::MatrixXd::Identity(n, n)).norm();
-  if (!(orth <= 1e-10))
-    unprocessable("y0", "y0 must be orthogonal to 1e-10 (||y0^T y0 - I||_F = " + std::to_string(orth) + ")");
-  if (y0.determinant() * z.determinant() < 0)
-    unprocessable("y0", "y0 must lie in the component of z (det y0 = det z): z^-1 y0 must be a rotation");
+  const GroupFamily& family = group_family(problem.group);
+  std::string why = family.not_an_element(problem.n, y0, "y0");
+  if (why.empty()) why = family.not_reachable(problem.n, y0, z);
+  if (!why.empty()) unprocessable("y0", why);
 }
 
 }  // namespace lienewton::validation

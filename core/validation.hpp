@@ -6,6 +6,7 @@
 
 #include "fields.hpp"
 #include "options.hpp"
+#include "problem_spec.hpp"
 #include "request_error.hpp"
 #include "rigid_body_params.hpp"
 
@@ -21,11 +22,13 @@ namespace lienewton::validation {
 // A field of the table in fields.hpp; path names it in the error (e.g. "n", "cells[2].h").
 void check(const fields::NumberField& field, double x, const std::string& path);
 void check(const fields::IntegerField& field, long long x, const std::string& path);
-void check_problem_dimension(ProblemKind problem, int n, const std::string& field = "n");
+// The problem's group is registered and the problem is defined on it (group_registry.hpp, problems.hpp).
+void check_problem_domain(const ProblemSpec& problem);
 void check_rigid_body(const RigidBodyParams& params);
-void check_start_point(const std::optional<Eigen::MatrixXd>& z, int n);
-// y0, the iteration's start: n x n, finite, orthogonal to 1e-10 and in the component of z (det y0 = det z), so
-// that z^-1 y0 is a rotation the iteration can reach. Throws RequestError naming "y0".
-void check_start_guess(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z);
+// The problem's z, when given: n x n, finite and an element of the group (its not_an_element).
+void check_start_point(const ProblemSpec& problem);
+// y0, the iteration's start: n x n, finite, an element of the group and reachable from the problem's z (on SO(N):
+// orthogonal to 1e-10 and det y0 = det z, so that z^-1 y0 is a rotation). Throws RequestError naming "y0".
+void check_start_guess(const ProblemSpec& problem, const Eigen::MatrixXd& y0);
 
 }  // namespace lienewton::validation

@@ -77,7 +77,7 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
   WorkPrecisionResult res;
   const double ref_start = thread_cpu_seconds();
   const Eigen::MatrixXd y_ref =
-      reference_solution(req.problem.kind, req.problem.rigid_body, req.problem.start(), req.t_end);
+      reference_solution(req.problem, req.problem.start(), req.t_end);
   res.reference_seconds = thread_cpu_seconds() - ref_start;
 
   res.series.resize(req.choices.size());

@@ -182,6 +182,10 @@ enum class Dimension { single, grid };
 // The ProblemSpec fields of a request; the request's Fields has already refused the ones it does not take.
 void read_problem_spec(const Fields& f, const Limits& limits, Dimension dimension, ProblemSpec& p) {
   if (auto x = f["problem"]) p.kind = read_enum(*x, "problem", problem_from_string, kAllProblems);
+  if (auto x = f["group"]) {
+    if (!x->is_string()) fail("group", "group must be a string naming a registered group");
+    p.group = x->get<std::string>();
+  }
   if (dimension == Dimension::single) p.n = read_n(f, limits, p.n);
   if (auto x = f["seed"]) p.seed = read_u64(*x, "seed");
   if (auto x = f["z"]) p.z = read_matrix(*x, "z", p.n);
@@ -255,7 +259,7 @@ json parse_body(std::string_view text) {
 }
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
+  Fields f(body, "", {"problem", "group", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
                       "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization",
                       "continuation", "watchdog", "restarts"});
   SolveRequest r;
@@ -267,7 +271,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 }
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
+  Fields f(body, "", {"problem", "group", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
                       "stopping", "linear_solver", "threads", "shard", "globalization", "continuation", "watchdog", "restarts"});
   SweepRequest r;
   read_problem_spec(f, limits, Dimension::grid, r.problem);
@@ -301,7 +305,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 }
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
+  Fields f(body, "", {"problem", "group", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
                       "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization",
                       "continuation", "watchdog", "restarts", "predictor"});
   IntegrateRequest r;
@@ -319,7 +323,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 }
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
+  Fields f(body, "", {"problem", "group", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
                       "stopping", "linear_solver", "globalization", "continuation", "watchdog", "restarts", "predictor"});
   WorkPrecisionRequest r;
   read_problem_spec(f, limits, Dimension::single, r.problem);
@@ -666,7 +670,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"residual", finite_or_null(t.residual)},
          {"step", finite_or_null(t.step)},
          {"angle", finite_or_null(t.angle)},
-         {"distance_to_pi", finite_or_null(t.distance_to_pi())},
+         {"distance_to_pi", finite_or_null(t.log_boundary_distance)},
          {"orthogonality_error", finite_or_null(t.orthogonality_error)},
          {"seconds", finite_or_null(t.seconds)},
          {"cpu_seconds", finite_or_null(t.cpu_seconds)}};

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/basins.hpp"
-#include "core/groups/with_group.hpp"
+#include "core/group_registry.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -62,8 +62,12 @@ std::string take_string(json& request, const char* field) {
   return v;
 }
 
-[[noreturn]] void not_so3(const char* what) {
-  throw ApiError(422, "unprocessable", "n", std::string("rotation frames are drawn for SO(3) only: ") + what);
+// Frames are rotations: SO(3), the default group at n = 3.
+void check_so3(const ProblemSpec& p) {
+  const std::string why = "rotation frames are drawn for SO(3) only: ";
+  if (p.group != ProblemSpec{}.group)
+    throw ApiError(422, "unprocessable", "group", why + "group must be " + ProblemSpec{}.group);
+  if (p.n != 3) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
 }
 
 void before_work(const RenderHooks& hooks) {
@@ -95,9 +99,7 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
   return out;
 }
 
-std::string group_name(int n) {
-  return with_group(n, [](const auto& group) { return group.name(); });
-}
+std::string group_name(const ProblemSpec& p) { return group_family(p.group).title(p.n); }
 
 std::string number_text(double x) {
   char text[32];
@@ -146,7 +148,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   Eigen::Matrix3d start;
   if (kind == "solve") {
     SolveRequest r = solve_request_from_json(request, limits);
-    if (r.problem.n != 3) not_so3("n must be 3");
+    check_so3(r.problem);
     r.solver.include_iterates = true;
     validate(r);
     before_work(hooks);
@@ -163,7 +165,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
   if (!request.contains("frames")) request["frames"] = 16;
   IntegrateRequest r = integrate_request_from_json(request, limits);
-  if (r.problem.n != 3) not_so3("n must be 3");
+  check_so3(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   r.reference = false;  // the picture needs no global error
   validate(r);
@@ -254,7 +256,7 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   });
   if (stopped) throw RenderCancelled{};
   const std::string title = "Work-precision: " + std::string(to_string(r.problem.kind)) + " on " +
-                            group_name(r.problem.n) + ", t_end = " + number_text(r.t_end);
+                            group_name(r.problem) + ", t_end = " + number_text(r.t_end);
   return draw_figure(renderer, [&] { return render::work_precision_scene(result, title, width, height); });
 }
 
@@ -295,7 +297,7 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
     }
   }
   const std::string title = "\u2016f(y\u2099)\u2016 against solver CPU time: " + std::string(to_string(base.problem.kind)) + " on " +
-                            group_name(base.problem.n) + ", h = " + number_text(base.h);
+                            group_name(base.problem) + ", h = " + number_text(base.h);
   return draw_figure(renderer, [&] { return render::residuals_scene(runs, title, width, height); });
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the solvers need of a Lie group G, as a concept every group static_asserts:
+// What the solvers and the requests need of a Lie group G, as a concept every group static_asserts:
 //   Element (group element), Vector (algebra coordinates on a basis of dimension dim()), Operator (dim x dim
 //   matrix on coordinates), Spectral (what exp/log computed that dexp/dexpinv can reuse: the decomposition of
 //   z^-1 y serves both log and dexpinv);
@@ -9,16 +9,27 @@
 //   (log_vector: cheaper when no differential follows), dexp (2.10) and dexpinv (3.9) through Spectral,
 //   and what the group owns about its log: kLogRadius (log is defined for angle(...) < kLogRadius),
 //   kLogMargin (how close to the radius log still answers), defect(y), the distance of y from the group
-//   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor).
-// Adding a group: one header here that satisfies LieGroup, one line in tests/core/lie_group_properties_test.cpp.
+//   (||y^T y - I||_F on SO(N)), and project(y), the group element nearest to y (the orthogonal polar factor);
+//   tangent(y, U) = d/dt y exp(tU) at t = 0, as an Element-shaped matrix (y U on a matrix group), which the
+//   problems' differentials take; principal_angle(theta), the angle of exp(v) from the angle theta of v
+//   (wrapped into [0, kLogRadius] on SO(N)),
+//   and the words a reason uses for them: kAngleName ("rotation angle"), kLogBoundaryName ("pi");
+// and what the requests need of it: element(m) and matrix(y) convert between a request's matrix (rows) and an
+// Element; random(seed), the seeded start; not_an_element(m, name) and not_reachable(y0, z), why a request's
+// z or y0 is refused (empty: accepted), in the group's words; component_identity(z), the identity of z's
+// component (where continuation starts from the stiff end); kAlgebraDimension, dim() as a formula in N.
+// Adding a group: see docs/architecture.md ("Where a change goes").
+#include <Eigen/Core>
 #include <concepts>
+#include <cstdint>
 #include <string>
 
 namespace lienewton {
 
 template <class G>
 concept LieGroup = requires(const G g, const typename G::Element y, const typename G::Vector v,
-                            const typename G::Spectral s, double& angle) {
+                            const typename G::Spectral s, double& angle, const Eigen::MatrixXd m,
+                            const std::string name, std::uint64_t seed) {
   { g.n() } -> std::same_as<int>;
   { g.name() } -> std::convertible_to<std::string>;  // as a title says it: "SO(3)"
   { g.dim() } -> std::same_as<int>;
@@ -42,8 +53,19 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
   { g.dexpinv_matrix(s) } -> std::convertible_to<typename G::Operator>;
   { g.defect(y) } -> std::same_as<double>;
   { g.project(y) } -> std::convertible_to<typename G::Element>;
+  { g.principal_angle(angle) } -> std::same_as<double>;
+  { g.tangent(y, y) } -> std::convertible_to<typename G::Element>;
   { G::kLogRadius } -> std::convertible_to<double>;
   { G::kLogMargin } -> std::convertible_to<double>;
+  { G::kAngleName } -> std::convertible_to<std::string>;
+  { G::kLogBoundaryName } -> std::convertible_to<std::string>;
+  { G::kAlgebraDimension } -> std::convertible_to<std::string>;
+  { g.element(m) } -> std::convertible_to<typename G::Element>;
+  { g.matrix(y) } -> std::same_as<Eigen::MatrixXd>;
+  { g.random(seed) } -> std::convertible_to<typename G::Element>;
+  { g.not_an_element(m, name) } -> std::same_as<std::string>;
+  { g.not_reachable(m, m) } -> std::same_as<std::string>;
+  { g.component_identity(y) } -> std::convertible_to<typename G::Element>;
 };
 
 // Coordinates and operators sized by the group (fixed-size types ignore the size arguments).
@@ -68,6 +90,11 @@ typename G::Operator identity_operator(const G& g) {
 template <class G>
 bool inside_log_domain(double angle) {
   return angle <= G::kLogRadius - G::kLogMargin;
+}
+// How far a point at this angle is from the boundary of log's domain (pi - angle on SO(N)).
+template <class G>
+double log_boundary_distance(double angle) {
+  return G::kLogRadius - angle;
 }
 
 }  // namespace lienewton

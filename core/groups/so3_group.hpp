@@ -2,22 +2,21 @@
 // SO(3) in closed form (so3.hpp) on fixed-size types: nothing allocates. Coordinates are the rotation vector,
 // and so is Spectral: the closed forms need nothing else.
 #include <Eigen/Dense>
-#include <numbers>
 #include <string>
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
 #include "polar_factor.hpp"
+#include "rotation_facts.hpp"
 #include "so3.hpp"
 
 namespace lienewton {
 
-struct SO3Group {
+struct SO3Group : RotationFacts<SO3Group, Eigen::Matrix3d> {
   using Element = Eigen::Matrix3d;
   using Vector = Eigen::Vector3d;
   using Operator = Eigen::Matrix3d;
   using Spectral = Eigen::Vector3d;
-  static constexpr double kLogRadius = std::numbers::pi;
   static constexpr double kLogMargin = kLogDomainMargin;
 
   int n() const { return 3; }

@@ -1,22 +1,21 @@
 #pragma once
 // SO(N), any N >= 2, through the spectral forms of son.hpp; coordinates on the paper's basis E_ij - E_ji.
 #include <Eigen/Dense>
-#include <numbers>
 #include <string>
 
 #include "lie_group.hpp"
 #include "log_domain.hpp"
 #include "polar_factor.hpp"
+#include "rotation_facts.hpp"
 #include "son.hpp"
 
 namespace lienewton {
 
-struct SONGroup {
+struct SONGroup : RotationFacts<SONGroup, Eigen::MatrixXd> {
   using Element = Eigen::MatrixXd;
   using Vector = Eigen::VectorXd;
   using Operator = Eigen::MatrixXd;
   using Spectral = son::SpectralForm;
-  static constexpr double kLogRadius = std::numbers::pi;
   static constexpr double kLogMargin = kLogDomainMargin;
 
   explicit SONGroup(int n) : n_(n) {}

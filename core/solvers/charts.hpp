@@ -9,8 +9,9 @@
 
 namespace lienewton {
 
-// Per unit of N: an iterate whose ||y^T y - I||_F exceeds this times N is replaced by its polar factor.
-inline constexpr double kReorthogonaliseDefect = 16.0 * std::numeric_limits<double>::epsilon();
+// Per unit of N: an iterate whose defect (||y^T y - I||_F on SO(N)) exceeds this times N is replaced by the
+// group's projection of it (the polar factor on SO(N)).
+inline constexpr double kProjectionDefect = 16.0 * std::numeric_limits<double>::epsilon();
 
 template <LieGroup G>
 class GroupChart {
@@ -30,13 +31,13 @@ class GroupChart {
   const Equation<G>& equation() const { return eq_; }
   Differential differential() const { return d_; }
   Point at(const State& y) const { return eq_.at(y, need_); }
-  // (3.5): y exp(s). Long products drift off the group by rounding (a random walk of ~eps per step); the polar
-  // factor puts the iterate back before the drift reaches the floor's scale.
-  State move(const Point& p, const Vector& s, bool& reorthogonalised) const {
+  // (3.5): y exp(s). Long products drift off the group by rounding (a random walk of ~eps per step); the
+  // group's projection puts the iterate back before the drift reaches the floor's scale.
+  State move(const Point& p, const Vector& s, bool& projected) const {
     const G& group = eq_.group();
     State next = group.times_exp(p.y, s);
-    reorthogonalised = next.allFinite() && group.defect(next) > kReorthogonaliseDefect * group.n();
-    if (reorthogonalised) next = group.project(next);
+    projected = next.allFinite() && group.defect(next) > kProjectionDefect * group.n();
+    if (projected) next = group.project(next);
     return next;
   }
   Operator matrix(const Point& p) const { return eq_.df_matrix(p, d_); }
@@ -70,8 +71,8 @@ class AlgebraChart {
     eq_.read_group_residual(p);
     return p;
   }
-  State move(const Point& p, const Vector& s, bool& reorthogonalised) const {  // (3.20): v + s
-    reorthogonalised = false;
+  State move(const Point& p, const Vector& s, bool& projected) const {  // (3.20): v + s
+    projected = false;
     return p.v + s;
   }
   Operator matrix(const Point& p) const { return eq_.dftilde_matrix(p, d_); }

@@ -95,7 +95,7 @@ class Equation {
     if (need == Need::differential) {
       p.v_form = group_.spectral(v);
       p.algebra_angle = group_.angle(p.v_form);
-      p.angle = principal_angle(p.algebra_angle);
+      p.angle = group_.principal_angle(p.algebra_angle);
     }
     if (field_) {
       p.hg = h_ * field_->g(p.y);
@@ -129,7 +129,7 @@ class Equation {
     if (d == Differential::finite_difference) {
       const double t = difference_step(p, u);
       const Point q = at(group_.times_exp(p.y, t * u), Need::residual);
-      if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+      if (!q.in_domain) throw_crossed_log_boundary(q.angle);
       return (q.f - p.f) / t;
     }
     if (!field_) return df_(p.y, u);
@@ -165,7 +165,7 @@ class Equation {
       for (int i = 0; i < group_.dim(); ++i) {
         throw_if_cancelled();  // q columns of exp and log: seconds for large N
         const Point q = at(group_.times_exp(p.y, t * basis_vector(group_, i)), Need::residual);
-        if (!q.in_domain) throw LogDomainError("a difference quotient crossed rotation angle pi", q.angle);
+        if (!q.in_domain) throw_crossed_log_boundary(q.angle);
         m.col(i) = (q.f - p.f) / t;
       }
       return m;
@@ -266,19 +266,16 @@ class Equation {
     return c;
   }
 
-  // The z rule: the given z replaced by its orthogonal polar factor; how far that moved it (Frobenius).
+  // The z rule: the given z replaced by the group's projection of it (SO(N): the orthogonal polar factor); how far
+  // that moved it (Frobenius).
   double z_adjustment() const { return z_adjustment_; }
 
-  // The identity of z's component of O(N): I when det z > 0, else diag(-1, 1, ..., 1). An equilibrium (g = 0) of
-  // both paper problems, where continuation from the stiff end starts (continuation.hpp).
-  Element component_identity() const {
-    Element j = group_.identity();
-    if (z_.determinant() < 0) j.row(0) *= -1.0;
-    return j;
-  }
+  // The identity of z's component (the group's answer): where continuation from the stiff end starts
+  // (continuation.hpp).
+  Element component_identity() const { return group_.component_identity(z_); }
 
   // Where the solvers start: y_0 = z, as section 5 does, unless start_at(y0) moved it (a request's y0, a
-  // basin map's pixel). y0 must lie in z SO(N); it is replaced by its polar factor, as z is.
+  // basin map's pixel). y0 must be reachable from z (in z SO(N) on O(N)); it is projected onto the group, as z is.
   const Element& start() const { return y0_; }
   void start_at(const Element& y0) {
     y0_ = group_.project(y0);
@@ -321,8 +318,10 @@ class Equation {
     return m;
   }
 
-  // The rotation angle of exp(v) from the algebra angle of v: wrapped into [0, kLogRadius] (= pi).
-  static double principal_angle(double theta) { return std::abs(std::remainder(theta, 2.0 * G::kLogRadius)); }
+  [[noreturn]] static void throw_crossed_log_boundary(double angle) {
+    throw LogDomainError(std::string("a difference quotient crossed ") + G::kAngleName + " " + G::kLogBoundaryName,
+                         angle);
+  }
 
   // v = log(z^-1 y); false when z^-1 y is at the edge of log's domain.
   bool read_log(Point& p, Need need) const {

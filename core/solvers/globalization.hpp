@@ -37,7 +37,7 @@ SolveResult globalized_newton(const Chart& chart, typename Chart::State start, c
       return run.finish(Status::left_log_domain, e.what());
     }
     if (!advance.next) return run.finish(advance.failure, advance.detail);
-    if (advance.reorthogonalised) run.reorthogonalised();
+    if (advance.projected) run.projected();
     step = advance.s.norm();
     info = advance.info;
     p = std::move(*advance.next);

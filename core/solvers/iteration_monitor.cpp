@@ -98,7 +98,8 @@ SolveResult IterationMonitor::finish(Status status) {
   return res;
 }
 
-std::string reason_for(Status status, const SolveResult& r) {
+std::string reason_for(Status status, const SolveResult& r, const std::string& angle_name,
+                       const std::string& log_boundary_name) {
   const std::string at = " at y_" + std::to_string(r.iterate);
   switch (status) {
     case Status::converged:
@@ -112,7 +113,8 @@ std::string reason_for(Status status, const SolveResult& r) {
              "; returned y_" + std::to_string(r.iterate) + " has ||f(y)|| = " + format_number(r.residual);
     case Status::non_finite: return "a NaN or Inf appeared in the residual, the step or the iterate";
     case Status::left_log_domain:
-      return "z^-1 y reached rotation angle pi, where log (and so f) is undefined; returned the last iterate "
+      return "z^-1 y reached " + angle_name + " " + log_boundary_name +
+             ", where log (and so f) is undefined; returned the last iterate "
              "inside, y_" + std::to_string(r.iterate) + ", with ||f(y)|| = " + format_number(r.residual);
     case Status::singular_differential:
       return "the Newton system is singular or too ill-conditioned (reciprocal condition < " +
@@ -121,7 +123,8 @@ std::string reason_for(Status status, const SolveResult& r) {
       return "stagnated at the rounding floor " + format_number(r.floor) + ": best ||f(y)|| = " +
              format_number(r.residual) + at + ", above tol (for large h an absolute tol cannot be met)";
     case Status::off_branch:
-      return "y solves y = z exp(h g(y)) to rounding, but h g(y) has a rotation angle beyond pi, so "
+      return "y solves y = z exp(h g(y)) to rounding, but h g(y) has a " + angle_name + " beyond " +
+             log_boundary_name + ", so "
              "log(z^-1 y) != h g(y) and ||f(y)|| = " + format_number(r.residual);
     case Status::local_minimum:
       return "a stationary point of 1/2 ||f||^2 that is no root: ||f(y)|| = " + format_number(r.residual) + at;

@@ -61,7 +61,8 @@ class IterationMonitor {
   std::string divergence_;
 };
 
-std::string reason_for(Status status, const SolveResult& result);
+std::string reason_for(Status status, const SolveResult& result, const std::string& angle_name,
+                       const std::string& log_boundary_name);
 std::string format_number(double x);
 
 }  // namespace lienewton

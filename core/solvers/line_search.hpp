@@ -22,7 +22,6 @@ namespace lienewton {
 inline constexpr double kArmijoC1 = 1e-4;
 inline constexpr int kMaxBacktracks = 40;    // alpha >= 10^-40 at most: far below any useful step
 inline constexpr int kMaxDampings = 12;      // mu up to 10^22 ||D^T f||: a steepest-descent step at rounding
-inline constexpr double kMaxStepNorm = 3.14159265358979323846;  // ||s|| <= pi: exp is injective up to angle pi
 
 template <LieGroup G, class Chart>
 class LineSearch {
@@ -55,7 +54,7 @@ class LineSearch {
     return Advance<Chart>::stop(no_decrease_status(model.point().f.norm(), floor),
                                 "no step decreases 1/2 ||f||^2 (||f|| = " + format_number(model.point().f.norm()) +
                                     ", ||D^T f|| = " + format_number(gradient) + ", " +
-                                    angle_detail(model.point().angle) + ")");
+                                    angle_detail<G>(model.point().angle) + ")");
   }
 
  private:
@@ -66,7 +65,7 @@ class LineSearch {
                                           std::string_view kind, double floor) const {
     const double phi0 = model.merit();
     const double norm = s.norm();
-    double alpha = std::min(1.0, kMaxStepNorm / norm);
+    double alpha = std::min(1.0, G::kLogRadius / norm);  // ||s|| <= the log radius: exp is injective there
     for (int k = 0; k < kMaxBacktracks && alpha * norm > 0.0; ++k) {
       if (cancellation_requested()) return Advance<Chart>::stop(Status::cancelled);
       const Trial<Chart> t = try_step(model.chart(), model.point(), Vector(alpha * s));
@@ -75,7 +74,7 @@ class LineSearch {
         a.next = t.p;
         a.s = alpha * s;
         a.info = {kind, alpha, {}, {}};
-        a.reorthogonalised = t.reorthogonalised;
+        a.projected = t.projected;
         return a;
       }
       if (k == 0)

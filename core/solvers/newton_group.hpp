@@ -33,11 +33,11 @@ SolveResult newton_group(const Equation<G>& eq, const SolverOptions& opt, const 
       return run.finish(Status::left_log_domain, e.what());
     }
     if (outcome != detail::StepOutcome::ok) return run.finish(detail::status_of(outcome));
-    bool reorthogonalised = false;
-    typename G::Element next = chart.move(p, u, reorthogonalised);  // (3.5): y_{n+1} = y_n exp(u_n)
+    bool projected = false;
+    typename G::Element next = chart.move(p, u, projected);  // (3.5): y_{n+1} = y_n exp(u_n)
     step = u.norm();
     if (!next.allFinite()) return run.finish(Status::non_finite);
-    if (reorthogonalised) run.reorthogonalised();
+    if (projected) run.projected();
     y = next;
     run.next();
   }

@@ -9,7 +9,6 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <string>
 
@@ -94,9 +93,11 @@ inline Status no_decrease_status(double f, double floor) {
   return f <= 16.0 * floor ? Status::stagnated : Status::no_descent;
 }
 
-// Where the iterate is with respect to log's cut, for a reason: "z^-1 y at rotation angle pi - 1e-10".
-inline std::string angle_detail(double angle) {
-  return "z^-1 y at rotation angle pi - " + format_number(std::numbers::pi - angle);
+// Where the iterate is with respect to log's cut, for a reason, in G's words: "z^-1 y at rotation angle pi - 1e-10".
+template <LieGroup G>
+std::string angle_detail(double angle) {
+  return std::string("z^-1 y at ") + G::kAngleName + " " + G::kLogBoundaryName + " - " +
+         format_number(log_boundary_distance<G>(angle));
 }
 
 // The local_minimum detail when the model's iterate is a stationary point of phi that is no root: ||f|| above
@@ -118,13 +119,13 @@ std::optional<std::string> stationary_without_root(NewtonModel<G, Chart>& model,
 template <class Chart>
 struct Trial {
   typename Chart::Point p;
-  bool reorthogonalised = false;
+  bool projected = false;
   double merit = std::numeric_limits<double>::infinity();
 };
 template <class Chart>
 Trial<Chart> try_step(const Chart& chart, const typename Chart::Point& from, const typename Chart::Vector& s) {
   Trial<Chart> t;
-  const auto x = chart.move(from, s, t.reorthogonalised);
+  const auto x = chart.move(from, s, t.projected);
   if (!x.allFinite()) return t;
   try {
     t.p = chart.at(x);
@@ -142,7 +143,7 @@ struct Advance {
   std::optional<typename Chart::Point> next;
   typename Chart::Vector s;
   StepInfo info;
-  bool reorthogonalised = false;
+  bool projected = false;
   Status failure = Status::max_iterations;  // when next is empty
   std::string detail;
   static Advance stop(Status status, std::string detail = {}) {

@@ -2,7 +2,6 @@
 // What a solver returns: the trace of every iterate and the result; TraceCallback streams the trace.
 #include <Eigen/Core>
 #include <functional>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +19,7 @@ struct TraceRecord {
   std::optional<double> algebra_residual;  // ||f~(v_n)|| (3.21), Version 2 and the fixed point (v_n = h g(y_{n-1}))
   double step = 0;                 // ||u_{n-1}||, the update that produced y_n (0 for n = 0)
   double angle = 0;                // largest rotation angle of z^-1 y_n
+  double log_boundary_distance = 0;  // how far z^-1 y_n is from the boundary of log's domain (pi - angle on SO(N))
   double orthogonality_error = 0;  // ||y_n^T y_n - I||_F (the group's defect of y_n)
   double seconds = 0;              // wall time since the solve started
   double cpu_seconds = 0;          // the solver's own CPU time so far (thread CPU time, callbacks excluded)
@@ -33,7 +33,6 @@ struct TraceRecord {
   std::optional<double> trust_radius;
   std::optional<int> step_from_iterate;
   std::optional<double> stage_h;   // continuation only: the h of the stage this iterate belongs to
-  double distance_to_pi() const { return std::numbers::pi - angle; }
 };
 
 // One stage of a continued solve (solvers/continuation.hpp): the equation at step size h, started where `start`

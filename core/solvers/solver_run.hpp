@@ -48,6 +48,7 @@ class SolverRun {
     rec.algebra_residual = p.algebra_residual;
     rec.step = step;
     rec.angle = p.angle;
+    rec.log_boundary_distance = log_boundary_distance<G>(p.angle);
     rec.orthogonality_error = eq_.group().defect(p.y);
     if (options_.include_iterates) rec.y = p.y;
     rec.step_kind = info.kind;
@@ -63,8 +64,8 @@ class SolverRun {
   void next() { monitor_.next(); }
   // The rounding floor of the driven residual at the last recorded iterate.
   double floor() const { return last_.floor; }
-  // The iterate about to be recorded was replaced by its polar factor (its defect had drifted).
-  void reorthogonalised() { ++reorthogonalisations_; }
+  // The iterate about to be recorded was replaced by the group's projection of it (its defect had drifted).
+  void projected() { ++projections_; }
   // Version 2's algebra iterate v grew past kDivergenceBound.
   SolveResult diverged(const char* what, double value) {
     monitor_.diverged_because(std::string(what) + " = " + format_number(value));
@@ -86,9 +87,9 @@ class SolverRun {
     res.floor = it.floor;
     res.orthogonality_error = eq_.group().defect(it.y);
     res.z_adjustment = eq_.z_adjustment();
-    res.reorthogonalisations = reorthogonalisations_;
+    res.reorthogonalisations = projections_;
     res.linear_solver = krylov_ ? "gmres" : "lu";
-    res.reason = reason_for(status, res);
+    res.reason = reason_for(status, res, G::kAngleName, G::kLogBoundaryName);
     if (status == Status::diverged && !monitor_.divergence().empty()) detail = monitor_.divergence();
     if (!detail.empty()) res.reason += " (" + detail + ")";
     return res;
@@ -102,8 +103,8 @@ class SolverRun {
       last_ = best_ = start;
     }
     char buf[112];
-    std::snprintf(buf, sizeof buf, "iterate %d has rotation angle %.17g, pi - %.3g", monitor_.iteration(), p.angle,
-                  G::kLogRadius - p.angle);
+    std::snprintf(buf, sizeof buf, "iterate %d has %s %.17g, %s - %.3g", monitor_.iteration(), G::kAngleName, p.angle,
+                  G::kLogBoundaryName, log_boundary_distance<G>(p.angle));
     return finish(Status::left_log_domain, buf);
   }
 
@@ -133,7 +134,7 @@ class SolverRun {
   std::optional<double> kappa_;
   Iterate last_, best_;
   bool recorded_ = false;
-  int reorthogonalisations_ = 0;
+  int projections_ = 0;
 };
 
 }  // namespace lienewton

@@ -53,14 +53,14 @@ class TrustRegion {
       if (!(rho >= 0.25)) {
         radius_ = 0.25 * s.norm();
       } else if (rho > 0.75 && s.norm() >= 0.99 * radius_) {
-        radius_ = std::min(2.0 * radius_, kMaxStepNorm);
+        radius_ = std::min(2.0 * radius_, G::kLogRadius);
       }
       if (predicted > 0.0 && rho > kAcceptRatio) {
         Advance<Chart> a;
         a.next = t.p;
         a.s = s;
         a.info = {kind, {}, used, {}};
-        a.reorthogonalised = t.reorthogonalised;
+        a.projected = t.projected;
         return a;
       }
       if (!(radius_ > 0.0) || !s.allFinite()) break;
@@ -69,7 +69,7 @@ class TrustRegion {
                                 "the trust radius shrank to " + format_number(radius_) +
                                     " without a decrease of 1/2 ||f||^2 (||f|| = " +
                                     format_number(model.point().f.norm()) + ", " +
-                                    angle_detail(model.point().angle) + ")");
+                                    angle_detail<G>(model.point().angle) + ")");
   }
 
  private:
@@ -98,7 +98,7 @@ class TrustRegion {
   }
 
   double tol_;
-  double radius_ = kMaxStepNorm;
+  double radius_ = G::kLogRadius;  // exp is injective within the log radius
 };
 
 }  // namespace lienewton

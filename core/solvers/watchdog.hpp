@@ -83,7 +83,7 @@ class Watchdog {
     a.next = std::move(t.p);
     a.s = u;
     a.info = {kind, {}, {}, {}};
-    a.reorthogonalised = t.reorthogonalised;
+    a.projected = t.projected;
     return a;
   }
 

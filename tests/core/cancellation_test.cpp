@@ -73,7 +73,7 @@ TEST(Cancellation, ReferenceSolutionStopsAtOnce) {
   const Eigen::MatrixXd y0 = start_point(8, 1);
   const CancellationToken late(Clock::now() - std::chrono::seconds(1), nullptr, nullptr);
   const CancellationScope scope(&late);
-  EXPECT_THROW(reference_solution(ProblemKind::paper_sine, RigidBodyParams{}, y0, 100.0), Cancelled);
+  EXPECT_THROW(reference_solution(ProblemSpec{.kind = ProblemKind::paper_sine, .n = 8}, y0, 100.0), Cancelled);
 }
 
 // GMRES polls inside its Arnoldi loop: a token cancelled during the third application of A stops it before the

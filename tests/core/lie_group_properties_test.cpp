@@ -2,7 +2,9 @@
 // (Sophus' LieGroupTests<G>, manif's MANIF_TEST): exp/log round trips inside log's domain, hat/vee, bracket
 // antisymmetry and Jacobi, compose/inverse, the group's defect, dexp o dexpinv = Id, dexpinv and dexp against
 // difference quotients of log and exp (3.12), (2.10), BCH to third order (2.8), and the matrices of dexp,
-// dexpinv and ad against their actions. Adding a group = one LIE_GROUP_CASE line below. Rotation-only checks
+// dexpinv and ad against their actions; and what the requests ask of a group: its seeded element, the membership
+// and projection of a request's matrix, the component identity and the distance to log's boundary. Adding a group =
+// one LIE_GROUP_CASE line below. Rotation-only checks
 // are in rotation_group_properties_test.cpp, so3_test.cpp and son_test.cpp. eps = 2^-52 (DBL_EPSILON).
 #include <gtest/gtest.h>
 
@@ -16,6 +18,7 @@
 
 #include "core/groups/so3_group.hpp"
 #include "core/groups/son_group.hpp"
+#include "matrix_sum_group.hpp"
 #include "random_algebra.hpp"
 #include "rn_group.hpp"
 
@@ -40,6 +43,7 @@ LIE_GROUP_CASE(SO7, SONGroup(7), false);
 LIE_GROUP_CASE(SO8, SONGroup(8), false);
 LIE_GROUP_CASE(SO15, SONGroup(15), false);
 LIE_GROUP_CASE(R5, RnGroup(5), true);
+LIE_GROUP_CASE(Rnxn3, MatrixSumGroup(3), true);
 #undef LIE_GROUP_CASE
 
 class CaseNames {
@@ -90,7 +94,7 @@ class LieGroupProperties : public ::testing::Test {
   double norm(const M& y) const { return std::max(1.0, y.norm()); }
 };
 
-using Groups = ::testing::Types<SO3ClosedForm, SO2, SO3Spectral, SO4, SO7, SO8, SO15, R5>;
+using Groups = ::testing::Types<SO3ClosedForm, SO2, SO3Spectral, SO4, SO7, SO8, SO15, R5, Rnxn3>;
 TYPED_TEST_SUITE(LieGroupProperties, Groups, CaseNames);
 
 // log(exp v) = v for |v| < pi - 1e-3 (inside log's domain on every rotation group) and exp(log y) = y, to
@@ -260,6 +264,79 @@ TYPED_TEST(LieGroupProperties, BchToThirdOrder) {
       EXPECT_GT(ratio, 14.0) << "trial " << trial << ", s = 0.1/2^" << k << ": " << errs[k] << " -> " << errs[k + 1];
       EXPECT_LT(ratio, 18.0) << "trial " << trial << ", s = 0.1/2^" << k;
     }
+  }
+}
+
+// The seeded element is an element (accepted as a request's z, defect at rounding), the same for the same seed and
+// another for another; element and matrix convert a request's matrix exactly; y0 = z is reachable from z.
+TYPED_TEST(LieGroupProperties, RandomElementIsAMember) {
+  const auto& g = this->g;
+  for (std::uint64_t seed : {1u, 2u, 12345u}) {
+    const auto y = g.random(seed);
+    const Eigen::MatrixXd m = g.matrix(y);
+    EXPECT_EQ(g.not_an_element(m, "z"), "") << "seed " << seed;
+    EXPECT_LE(g.defect(y), 16.0 * g.n() * kEps) << "seed " << seed;
+    EXPECT_EQ(g.matrix(g.random(seed)), m) << "seed " << seed;
+    EXPECT_NE(g.matrix(g.random(seed + 1)), m) << "seed " << seed;
+    EXPECT_EQ(g.matrix(g.element(m)), m);
+    EXPECT_EQ(g.not_reachable(m, m), "");
+  }
+}
+
+// A member perturbed by 1e-6 projects back onto the group (accepted, defect at rounding) within a few times the
+// perturbation; a member is its own projection to rounding.
+TYPED_TEST(LieGroupProperties, ProjectionOfAPerturbedElementIsAMember) {
+  const auto& g = this->g;
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto y = g.exp(this->random_vector(0.1, 3.0));
+    typename TestFixture::M noisy = y;
+    for (Eigen::Index i = 0; i < noisy.size(); ++i) noisy.data()[i] += 1e-6 * normal(this->rng);
+    const auto p = g.project(noisy);
+    EXPECT_EQ(g.not_an_element(g.matrix(p), "y0"), "");
+    EXPECT_LE(g.defect(p), 16.0 * g.n() * kEps);
+    EXPECT_LE((p - y).norm(), 1e-5 * std::sqrt(double(y.size())));
+    EXPECT_LE((g.project(y) - y).norm(), 16.0 * g.n() * kEps * this->norm(y));
+  }
+}
+
+// tangent(y, U) = d/dt y exp(tU) at t = 0 (what the problems' differentials take), against central differences of
+// times_exp at t = 1e-5: truncation ~t^2 and rounding ~eps/t, so <= 1e-8 relative.
+TYPED_TEST(LieGroupProperties, TangentIsTheDerivativeOfTimesExp) {
+  using M = typename TestFixture::M;
+  using V = typename TestFixture::V;
+  const auto& g = this->g;
+  const double t = 1e-5;
+  for (int trial = 0; trial < 10; ++trial) {
+    const M y = g.exp(this->random_vector(0.1, 3.0));
+    const V u = this->random_direction();
+    const M exact = g.tangent(y, M(g.hat(u)));
+    const M central = (g.times_exp(y, V(t * u)) - g.times_exp(y, V(-t * u))) / (2 * t);
+    EXPECT_LE((central - exact).norm() / std::max(1.0, exact.norm()), 1e-8) << "trial " << trial;
+  }
+}
+
+// The identity is at the full log radius from log's boundary, inside the domain, its own component's identity; the
+// principal angle of a v inside the domain is v's own angle, and every principal angle lies in [0, kLogRadius].
+TYPED_TEST(LieGroupProperties, LogBoundaryAndComponentIdentity) {
+  using G = typename TestFixture::G;
+  const auto& g = this->g;
+  const auto e = g.identity();
+  const double at_identity = g.angle(g.log(e));
+  EXPECT_EQ(at_identity, 0.0);
+  EXPECT_EQ(log_boundary_distance<G>(at_identity), G::kLogRadius);
+  EXPECT_TRUE(inside_log_domain<G>(at_identity));
+  EXPECT_EQ(g.matrix(g.component_identity(e)), g.matrix(e));
+  EXPECT_FALSE(std::string(G::kAlgebraDimension).empty());
+  for (int trial = 0; trial < 20; ++trial) {
+    const double angle = g.angle(g.spectral(this->random_vector(0.0, kPi - 1e-3)));
+    EXPECT_EQ(g.principal_angle(angle), angle);
+    const double far = g.principal_angle(g.angle(g.spectral(this->random_vector(0.0, 50.0))));
+    EXPECT_GE(far, 0.0);
+    EXPECT_LE(far, G::kLogRadius);
+    // The component identity of a seeded z is reachable from z (continuation starts there).
+    const Eigen::MatrixXd z = g.matrix(g.random(static_cast<std::uint64_t>(trial)));
+    EXPECT_EQ(g.not_reachable(g.matrix(g.component_identity(g.element(z))), z), "");
   }
 }
 

@@ -2,7 +2,9 @@
 // The abelian group R^n under addition: exp and log are the identity, ad = 0, dexp = dexpinv = Id. Both Newton
 // versions must reduce to classical Newton on it; no production path uses it.
 #include <Eigen/Dense>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "core/groups/lie_group.hpp"
@@ -16,6 +18,9 @@ struct RnGroup {
   using Spectral = Eigen::VectorXd;
   static constexpr double kLogRadius = std::numeric_limits<double>::infinity();  // log is global
   static constexpr double kLogMargin = 0.0;
+  static constexpr const char* kAngleName = "angle";  // always 0: nothing wraps
+  static constexpr const char* kLogBoundaryName = "infinity";
+  static constexpr const char* kAlgebraDimension = "N";
 
   explicit RnGroup(int n) : n_(n) {}
   int n() const { return n_; }
@@ -46,6 +51,21 @@ struct RnGroup {
 
   double defect(const Element&) const { return 0.0; }
   Element project(const Element& y) const { return y; }
+  double principal_angle(double theta) const { return theta; }
+  Element tangent(const Element&, const Element& u) const { return u; }  // y + t u
+
+  // A request's matrix is a column of n entries; every finite one is an element, reachable from any other.
+  Element element(const Eigen::MatrixXd& m) const { return m.col(0); }
+  Eigen::MatrixXd matrix(const Element& y) const { return y; }
+  Element random(std::uint64_t seed) const {
+    std::mt19937_64 rng(seed);
+    Element y(n_);
+    for (int i = 0; i < n_; ++i) y(i) = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    return y;
+  }
+  std::string not_an_element(const Eigen::MatrixXd&, const std::string&) const { return {}; }
+  std::string not_reachable(const Eigen::MatrixXd&, const Eigen::MatrixXd&) const { return {}; }
+  Element component_identity(const Element&) const { return identity(); }
 
  private:
   int n_;

@@ -1,0 +1,53 @@
+#pragma once
+// The groups a request may name: "group": "SO" picks the family SO and n its member SO(n). Each family is
+// registered once, by register_group<Family>() (register_group.hpp), which compiles the request code for its
+// groups; the requests reach a group only through the family found here by name.
+#include <Eigen/Dense>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "basins.hpp"
+#include "integrate.hpp"
+#include "solve.hpp"
+
+namespace lienewton {
+
+// One registered family of groups, indexed by n, with every request it answers; n is valid (fields::n) and the
+// matrices have been checked for shape and membership before these are called.
+class GroupFamily {
+ public:
+  virtual ~GroupFamily() = default;
+  virtual std::string name() const = 0;         // as a request names it: "SO"
+  virtual std::string title(int n) const = 0;   // as a title names its member: "SO(3)"
+  virtual int algebra_dim(int n) const = 0;
+  virtual std::string algebra_dimension() const = 0;  // algebra_dim as a formula in N: "N(N-1)/2"
+  virtual double log_radius() const = 0;
+  virtual bool defines(ProblemKind kind, int n) const = 0;  // the problem is defined on the group (problems.hpp)
+  virtual Eigen::MatrixXd random(int n, std::uint64_t seed) const = 0;  // the seeded start
+  // Why a request's matrix `name` (n x n, finite) is refused as an element, or why y0 cannot be reached from z;
+  // empty when accepted.
+  virtual std::string not_an_element(int n, const Eigen::MatrixXd& m, const std::string& name) const = 0;
+  virtual std::string not_reachable(int n, const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const = 0;
+  virtual Eigen::MatrixXd project(int n, const Eigen::MatrixXd& m) const = 0;  // the element nearest to m
+  virtual bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const = 0;  // basin_map.hpp
+
+  // The requests on the group (validated by their callers).
+  virtual SolveResult solve(const SolveRequest& request, const TraceCallback& on_iteration) const = 0;
+  virtual BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row,
+                             const WorkFarm* farm) const = 0;
+  virtual IntegrateResult integrate(const IntegrateRequest& request, const Eigen::MatrixXd& y0,
+                                    const StepCallback& on_step) const = 0;
+  virtual Eigen::MatrixXd reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0,
+                                             double t_end) const = 0;
+};
+
+// The family a request names; throws RequestError (unprocessable, field "group") listing the registered names.
+const GroupFamily& group_family(const std::string& name);
+// Every registered name, in registration order ("SO" first).
+std::vector<std::string> registered_group_names();
+// Adds a family (register_group.hpp); a name registered twice is a programming error (std::logic_error).
+void add_group_family(std::unique_ptr<GroupFamily> family);
+
+}  // namespace lienewton
