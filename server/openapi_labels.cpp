@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/options.hpp"
+#include "core/solvers/newton_step.hpp"
 #include "core/status.hpp"
 #include "render/basin_scene.hpp"
 #include "render/colormap.hpp"
@@ -64,7 +65,10 @@ Words words(Integrator i) {
 
 Words words(LinearSolver s) {
   switch (s) {
-    case LinearSolver::auto_select: return {"Automatic", "auto", "LU up to N = 16, GMRES above"};
+    case LinearSolver::auto_select: {
+      static const std::string text = "LU up to N = " + std::to_string(kKrylovThreshold) + ", GMRES above";
+      return {"Automatic", "auto", text.c_str()};
+    }
     case LinearSolver::lu: return {"Dense LU", "LU", "dense LU of the Newton system"};
     case LinearSolver::gmres: return {"GMRES", "GMRES", "matrix-free GMRES with the Eisenstat\u2013Walker forcing term"};
   }
