@@ -1,8 +1,10 @@
 #pragma once
 // The request contract, written once: one row per request field (name, JSON type, bounds or enum, default,
-// description, the routes that take it and the struct member it lands in). The codec reads and refuses fields by
-// these rows, core validation checks their bounds, /openapi.json is generated from them and the dashboard's forms
-// read their limits and hints from /openapi.json. A new field is one row here plus its struct member.
+// description, the routes that take it and the struct member it lands in), in request_fields()'s table
+// (fields.cpp; the render routes' picture options in server/render_requests.cpp). The codec reads and refuses
+// fields by these rows, core validation checks their bounds (check_bounds), /openapi.json is generated from them
+// and the dashboard's forms read their defaults, limits and hints from /openapi.json. A new field is one row in
+// the table plus its struct member.
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
