@@ -251,12 +251,9 @@ void check_bounds(const C& object) {
     for (const Member& m : row.lands) {
       std::visit([&](auto member) {
         if constexpr (std::is_same_v<decltype(member), double C::*>) {
-          const double x = object.*member;
-          const bool above_min = row.exclusive_minimum ? x > *row.minimum : x >= *row.minimum;
-          if (!(above_min && x <= *row.maximum)) validation::invalid(row.name, row.number_message(row.name));
+          if (!row.contains(object.*member)) validation::invalid(row.name, row.number_message(row.name));
         } else if constexpr (std::is_same_v<decltype(member), int C::*>) {
-          const long long x = object.*member;
-          if ((row.minimum && x < *row.minimum) || (row.maximum && x > *row.maximum))
+          if (!row.contains(object.*member))
             validation::invalid(row.name, row.integer_message(row.name, std::numeric_limits<long long>::max()));
         }
       }, m);

@@ -143,6 +143,10 @@ struct Field {
   std::vector<std::string> required{};          // object: the fields it needs
 
   bool takes(Route route) const { return (routes & route) != 0; }
+  // Whether x is within [minimum, maximum] ((minimum, maximum] when exclusive_minimum); an absent bound holds.
+  bool contains(double x) const {
+    return (!minimum || (exclusive_minimum ? x > *minimum : x >= *minimum)) && (!maximum || x <= *maximum);
+  }
   // The message of a number outside [minimum, maximum] (or an integer outside [minimum, cap]), as the core's
   // NumberField/IntegerField words it.
   std::string number_message(const std::string& path) const;

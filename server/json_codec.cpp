@@ -185,8 +185,7 @@ using Tag = std::type_identity<T>;
 
 double read_value(const json& v, const fields::Field& row, const std::string& path, Reading&, Tag<double>) {
   const double x = read_number(v, path, row.number_message(path));
-  const bool above_min = row.exclusive_minimum ? x > *row.minimum : x >= *row.minimum;
-  if (!(above_min && x <= *row.maximum)) fail(path, row.number_message(path));
+  if (!row.contains(x)) fail(path, row.number_message(path));
   return x;
 }
 
@@ -237,7 +236,7 @@ Eigen::Vector3d read_value(const json& v, const fields::Field& row, const std::s
   Eigen::Vector3d out;
   for (int i = 0; i < 3; ++i) {
     out[i] = read_number(v[static_cast<std::size_t>(i)], path, message);
-    if (row.minimum && !(row.exclusive_minimum ? out[i] > *row.minimum : out[i] >= *row.minimum)) fail(path, message);
+    if (!row.contains(out[i])) fail(path, message);
   }
   return out;
 }

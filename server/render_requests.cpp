@@ -147,22 +147,20 @@ const std::vector<fields::Field>& picture_fields() {
     Field elevation = azimuth;
     elevation.name = "elevation_deg";
     elevation.description = "camera elevation";
-    Field methods = *fields::find(fields::solve, "method");
-    methods.name = "methods";
-    methods.routes = fields::render_residuals;
-    methods.lands = {};
-    methods.array = true;
-    methods.min_items = 1;
-    methods.max_items = 16;
-    methods.items = "method names";
-    Field differentials = *fields::find(fields::solve, "differential");
-    differentials.name = "differentials";
-    differentials.routes = fields::render_residuals;
-    differentials.lands = {};
-    differentials.array = true;
-    differentials.min_items = 1;
-    differentials.max_items = 16;
-    differentials.items = "differential names";
+    // The residuals' lists: a value of the solve's method or differential per element.
+    const auto list_of = [](const char* one, const char* name, const char* items) {
+      Field list = *fields::find(fields::solve, one);
+      list.name = name;
+      list.routes = fields::render_residuals;
+      list.lands = {};
+      list.array = true;
+      list.min_items = 1;
+      list.max_items = 16;
+      list.items = items;
+      return list;
+    };
+    const Field methods = list_of("method", "methods", "method names");
+    const Field differentials = list_of("differential", "differentials", "differential names");
     return std::vector<Field>{
         Field{.name = "kind", .type = Type::string, .routes = fields::render_frames,
               .description = "what is drawn: a solve's iterates or an integration's states (default: integrate when "
