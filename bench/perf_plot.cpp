@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
         std::printf("%s N=%d per_iteration=%.6g s\n", label.c_str(), n, t);
       }
       std::printf("%s fitted exponent (N >= %d): %.3f\n", label.c_str(), min_n, slope);
-      // The automatic choice switches solver at kKrylovThreshold = 40: each regime's own slope too.
+      // Each side of N = 40 has its own slope too (the automatic choice once switched solver there; it now
+      // switches at kKrylovThreshold).
       std::printf("%s fitted exponent (%d <= N <= 40): %.3f\n", label.c_str(), min_n,
                   fitted_exponent(it->second, min_n, 40));
       std::printf("%s fitted exponent (N > 40): %.3f\n", label.c_str(), fitted_exponent(it->second, 41));

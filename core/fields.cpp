@@ -2,6 +2,19 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+
+#include "basins.hpp"
+#include "group_registry.hpp"
+#include "integrate.hpp"
+#include "solve.hpp"
+#include "solvers/continuation.hpp"
+#include "solvers/newton_step.hpp"
+#include "solvers/restart_start.hpp"
+#include "solvers/watchdog.hpp"
+#include "sweep.hpp"
+#include "validation.hpp"
+#include "work_precision.hpp"
 
 namespace lienewton::fields {
 
@@ -27,6 +40,247 @@ std::string NumberField::message(const std::string& path) const {
 
 std::string IntegerField::message(const std::string& path, long long cap) const {
   return path + " must be an integer in [" + std::to_string(min) + ", " + std::to_string(std::min(max, cap)) + "]";
+}
+
+std::string Field::number_message(const std::string& path) const {
+  return NumberField{name.c_str(), *minimum, *maximum, exclusive_minimum, kNoDefault, ""}.message(path);
+}
+
+std::string Field::integer_message(const std::string& path, long long cap) const {
+  const auto bound = [](const std::optional<double>& b, long long fallback) {
+    return b ? static_cast<long long>(*b) : fallback;
+  };
+  return IntegerField{name.c_str(), bound(minimum, std::numeric_limits<long long>::min()),
+                      bound(maximum, std::numeric_limits<long long>::max()), 0, ""}
+      .message(path, cap);
+}
+
+namespace {
+
+// A row from the core's bounds.
+Field number(const NumberField& f, Routes routes, std::vector<Member> lands) {
+  Field row{.name = f.name, .type = Type::number, .routes = routes, .lands = std::move(lands),
+            .description = f.description, .minimum = f.min, .maximum = f.max, .exclusive_minimum = f.min_exclusive};
+  if (!std::isnan(f.default_value)) row.default_value = f.default_value;
+  return row;
+}
+
+Field integer(const IntegerField& f, Routes routes, std::vector<Member> lands, Cap cap = Cap::none) {
+  return Field{.name = f.name, .type = Type::integer, .routes = routes, .lands = std::move(lands),
+               .description = f.description, .minimum = static_cast<double>(f.min),
+               .maximum = static_cast<double>(f.max), .cap = cap, .default_value = f.default_value};
+}
+
+template <class E, std::size_t K>
+Field enumeration(const char* name, const E (&all)[K], Routes routes, std::vector<Member> lands, std::string description,
+                  Default default_value = {}) {
+  return Field{.name = name, .type = Type::string, .routes = routes, .lands = std::move(lands),
+               .description = std::move(description), .values = names(all), .default_value = std::move(default_value)};
+}
+
+Field boolean(const char* name, Routes routes, Member lands, std::string description) {
+  return Field{.name = name, .type = Type::boolean, .routes = routes, .lands = {lands},
+               .description = std::move(description), .default_value = false};
+}
+
+// An array of the element `item` describes, with [min_items, max_items] elements called `items` in errors.
+Field array(Field item, std::size_t min_items, std::size_t max_items, std::string items, Cap cap_items = Cap::none) {
+  item.array = true;
+  item.min_items = min_items;
+  item.max_items = max_items;
+  item.items = std::move(items);
+  item.cap_items = cap_items;
+  return item;
+}
+
+std::string text(int x) { return std::to_string(x); }
+
+std::vector<Field> build() {
+  const std::string sixteenth = "1/" + text(static_cast<int>(std::lround(1 / kContinuationStart)));
+  const std::string stiff = text(1 << kStiffDoublings) + "h";
+  const std::string method_text = "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2";
+  const std::string differential_text = "how the Newton differential is formed";
+  const Field shard_index{.name = "index", .type = Type::integer, .lands = {&Shard::index},
+                          .description = "this part, 0 <= index < count", .minimum = 0, .maximum = 1000000};
+  const Field shard_count{.name = "count", .type = Type::integer, .lands = {&Shard::count},
+                          .description = "parts of the grid or map (>= 1); a basin map's part computes the rows r "
+                                         "with r % count == index",
+                          .minimum = 1, .maximum = 1000000};
+  Field z{.name = "z", .type = Type::matrix, .routes = solve | integrate | basins, .lands = {&ProblemSpec::z},
+          .description = "the equation's z, N x N rows, orthogonal to 1e-10 (default: from seed; its size is N when "
+                         "n is absent): the start point of a solve (unless y0), y(0) of an integration; a basin "
+                         "map's starts move, z stays"};
+  Field coordinates{.name = "b1", .type = Type::number, .routes = basins, .lands = {&BasinRequest::b1},
+                    .description = "n(n-1)/2 coordinates in the algebra (basis E_ij - E_ji, i < j row-major); "
+                                   "normalised before use"};
+  coordinates.array = true;
+  Field b2 = coordinates;
+  b2.name = "b2";
+  b2.lands = {&BasinRequest::b2};
+  Field three{.name = "inertia", .type = Type::number, .lands = {&RigidBodyParams::inertia},
+              .description = "principal moments (positive)", .minimum = 0.0, .exclusive_minimum = true};
+  three = array(three, 3, 3, "3 positive finite numbers");
+  Field momentum{.name = "momentum", .type = Type::number, .lands = {&RigidBodyParams::momentum},
+                 .description = "spatial angular momentum"};
+  momentum = array(momentum, 3, 3, "3 finite numbers");
+  Field seed{.name = "seed", .type = Type::integer, .routes = kProblemRoutes, .lands = {&ProblemSpec::seed},
+             .description = "unsigned 64-bit seed of the random start point", .minimum = 0.0,
+             .maximum = static_cast<double>(std::numeric_limits<std::uint64_t>::max()), .default_value = 1LL};
+  Field basin_n = integer(n, basins, {&ProblemSpec::n}, Cap::n);
+  basin_n.description = "matrix size N (at least 3: the plane needs two directions)";
+  basin_n.default_value = {};
+  basin_n.schema_minimum = 3;
+  Field restarts_row = integer(restarts, kProblemRoutes, {&SolverOptions::restarts});
+  restarts_row.schema_maximum = restarts_row.maximum;
+  restarts_row.description = std::string(restarts.description) + " (else 422), the search's last try: at most " +
+                             text(kRestartIterations) + " iterations each, the requested globalization, no "
+                             "watchdog, from y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at "
+                             "most " + format_bound(kRestartAngle) + " rad; the first that converges ends the search";
+
+  std::vector<Field> t;
+  t.push_back(enumeration("problem", kAllProblems, kProblemRoutes, {&ProblemSpec::kind}, "test problem"));
+  t.push_back(Field{.name = "group", .type = Type::string, .routes = kProblemRoutes, .lands = {&ProblemSpec::group},
+                    .description = "the Lie group by its registered name; n is its index, as in SO(n)",
+                    .values = registered_group_names(), .default_value = std::string("SO")});
+  t.push_back(integer(n, solve | integrate | work_precision, {&ProblemSpec::n}, Cap::n));
+  t.push_back(basin_n);
+  t.push_back(seed);
+  t.push_back(z);
+  t.push_back(Field{.name = "rigid_body", .type = Type::object, .routes = kProblemRoutes,
+                    .lands = {&ProblemSpec::rigid_body}, .description = "rigid-body only: the body's parameters",
+                    .schema = "RigidBody", .properties = {three, momentum}});
+  t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text));
+  t.push_back(enumeration("differential", kAllDifferentials, solve | sweep | integrate | basins,
+                          {&SolverOptions::differential}, differential_text));
+  t.push_back(number(tol, kProblemRoutes, {&SolverOptions::tol}));
+  t.push_back(integer(max_iterations, kProblemRoutes, {&SolverOptions::max_iterations}, Cap::iterations));
+  t.push_back(enumeration("linear_solver", kAllLinearSolvers, kProblemRoutes, {&SolverOptions::linear_solver},
+                          "auto: dense LU up to N = " + text(kKrylovThreshold) + ", matrix-free GMRES above",
+                          std::string("auto")));
+  t.push_back(enumeration(
+      "stopping", kAllStoppings, kProblemRoutes, {&SolverOptions::stopping},
+      "stopping rule of Version 2 and the fixed point: residual stops on ||f(y_n)|| = ||log(z^-1 y_n) - h g(y_n)|| "
+      "<= tol as in the paper's section 5; algebra-residual on ||f~(v_n)|| (3.21), the test Version 2 would normally "
+      "use. Version 1 always uses ||f(y_n)||",
+      std::string("residual")));
+  t.push_back(enumeration(
+      "globalization", kAllGlobalizations, kProblemRoutes, {&SolverOptions::globalization},
+      "Newton only (422 for fixed-point): none = the paper's full steps; line-search = Armijo backtracking on "
+      "1/2 ||f||^2 along y exp(alpha u) (Version 1) or v + alpha u (Version 2), Levenberg-Marquardt "
+      "(D^T D + mu I) u = -D^T f when Newton's step fails; trust-region = dogleg on 1/2 ||f + D s||^2",
+      std::string("none")));
+  t.push_back(boolean(
+      "continuation", kProblemRoutes, &SolverOptions::continuation,
+      "first solve at h (with a globalization, then also the plain Newton at h); only when that fails, reach h "
+      "through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= " + sixteenth + "; a failed stage is retried at the "
+      "geometric mean of its h and the last reached one), each stage started at the previous root; failing that, "
+      "from the stiff end: solve from the identity of z's component at h, else at 2h, ..., " + stiff + " and halve "
+      "back to h from the root found; failing that, at h/2, h/4, ..., " + sixteenth + " from the request's start "
+      "and from that identity, and up to h from the first root found; failing that, the restarts (restarts). With "
+      "a globalization every stage that finds no root is solved again from the same start with full steps. The "
+      "result's continuation lists the stages, and only a solve at h decides the status"));
+  t.push_back(boolean(
+      "watchdog", kProblemRoutes, &SolverOptions::watchdog,
+      "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it jumps at log's cut), "
+      "take it anyway, up to " + text(kWatchdogSteps) + " full steps until one falls below the Armijo bound of the "
+      "iterate it started from, else go back there and take the globalised step; at most " +
+      text(kWatchdogEpisodes) + " such episodes go back. Continuation's stages never use it"));
+  t.push_back(restarts_row);
+  t.push_back(boolean("include_iterates", solve, &SolverOptions::include_iterates,
+                      "keep every iterate y_n in the trace (TraceRecord.y)"));
+  t.push_back(number(h, solve | integrate | basins, {&SolveRequest::h, &IntegrateRequest::h}));
+  t.push_back(Field{.name = "y0", .type = Type::matrix, .routes = solve, .lands = {&SolveRequest::y0},
+                    .description = "starting guess of the iteration (default: z, as the paper): N x N rows, "
+                                   "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
+                                   "equation's z"});
+  t.push_back(number(t_end, integrate | work_precision, {&IntegrateRequest::t_end, &WorkPrecisionRequest::t_end}));
+  t.push_back(enumeration("integrator", kAllIntegrators, integrate, {&IntegrateRequest::integrator},
+                          "implicit Lie group integrator"));
+  t.push_back(Field{.name = "frames", .type = Type::integer, .routes = integrate, .lands = {&IntegrateRequest::frames},
+                    .description = "evenly spaced states to return", .minimum = 0.0, .cap = Cap::frames});
+  t.push_back(enumeration("predictor", kAllPredictors, integrate | work_precision,
+                          {&IntegrateRequest::predictor, &WorkPrecisionRequest::predictor},
+                          "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
+                          "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "
+                          "residual is the smaller",
+                          std::string("lie-euler")));
+  t.push_back(array(Field{.name = "choices", .type = Type::object, .routes = work_precision,
+                          .lands = {&WorkPrecisionRequest::choices},
+                          .description = "the (integrator, method, differential) runs, each at every h",
+                          .schema = "WorkPrecisionChoice",
+                          .properties = {enumeration("integrator", kAllIntegrators, 0, {&WorkPrecisionChoice::integrator},
+                                                     "implicit Lie group integrator"),
+                                         enumeration("method", kAllMethods, 0, {&WorkPrecisionChoice::method}, method_text),
+                                         enumeration("differential", kAllDifferentials, 0,
+                                                     {&WorkPrecisionChoice::differential}, differential_text)}},
+                    1, 64, "choice objects"));
+  Field wp_h = number(h, work_precision, {&WorkPrecisionRequest::h});
+  t.push_back(array(wp_h, 1, 64, "step sizes"));
+  t.push_back(array(enumeration("methods", kAllMethods, sweep, {&SweepRequest::methods}, method_text), 1, 16,
+                    "method names"));
+  t.push_back(array(integer(n, sweep, {&SweepRequest::n}, Cap::n), 1, 100000, "integers", Cap::grid_axis));
+  t.push_back(array(number(h, sweep, {&SweepRequest::h}), 1, 100000, "step sizes", Cap::grid_axis));
+  t.push_back(Field{.name = "threads", .type = Type::integer, .routes = sweep, .lands = {&SweepRequest::threads},
+                    .description = "threads of this sweep (0: all cores)", .minimum = 0.0, .cap = Cap::threads,
+                    .publish_cap = true, .default_value = 0LL});
+  t.push_back(array(enumeration("methods", kAllMethods, basins, {&BasinRequest::methods}, method_text), 1,
+                    std::size(kAllMethods), "method names"));
+  // Any size is read: the core refuses one beyond its largest map (422), the server's output cap with 413.
+  t.push_back(Field{.name = "size", .type = Type::integer, .routes = basins, .lands = {&BasinRequest::size},
+                    .description = "pixels per side: size x size starts per method (beyond " + text(kMaxBasinSize) +
+                                   ": 422; beyond --max-output-values numbers: 413)",
+                    .minimum = 1.0, .maximum = static_cast<double>(std::numeric_limits<int>::max()),
+                    .schema_maximum = kMaxBasinSize, .default_value = static_cast<long long>(kDefaultBasinSize)});
+  t.push_back(Field{.name = "shard", .type = Type::object, .routes = sweep | basins,
+                    .lands = {&SweepRequest::shard, &BasinRequest::shard},
+                    .description = "compute only this part (lienewton merge joins the parts)",
+                    .properties = {shard_index, shard_count}, .required = {"index", "count"}});
+  t.push_back(Field{.name = "r", .type = Type::number, .routes = basins, .lands = {&BasinRequest::radius},
+                    .description = "(a, b) in [-r, r]^2; default: the group's log radius (its default here is SO's)",
+                    .minimum = 0.0, .maximum = 100.0, .exclusive_minimum = true,
+                    .default_value = group_family(ProblemSpec{}.group).log_radius()});
+  t.push_back(coordinates);
+  t.push_back(b2);
+  return t;
+}
+
+}  // namespace
+
+template <class C>
+void check_bounds(const C& object) {
+  for (const Field& row : request_fields()) {
+    for (const Member& m : row.lands) {
+      std::visit([&](auto member) {
+        if constexpr (std::is_same_v<decltype(member), double C::*>) {
+          if (!row.contains(object.*member)) validation::invalid(row.name, row.number_message(row.name));
+        } else if constexpr (std::is_same_v<decltype(member), int C::*>) {
+          if (!row.contains(object.*member))
+            validation::invalid(row.name, row.integer_message(row.name, std::numeric_limits<long long>::max()));
+        }
+      }, m);
+    }
+  }
+}
+
+template void check_bounds(const ProblemSpec&);
+template void check_bounds(const SolverOptions&);
+
+const std::vector<Field>& request_fields() {
+  static const std::vector<Field> table = build();
+  return table;
+}
+
+std::vector<const Field*> fields_of(Route route) {
+  std::vector<const Field*> out;
+  for (const Field& f : request_fields())
+    if (f.takes(route)) out.push_back(&f);
+  return out;
+}
+
+const Field* find(Route route, std::string_view name) {
+  for (const Field& f : request_fields())
+    if (f.takes(route) && f.name == name) return &f;
+  return nullptr;
 }
 
 }  // namespace lienewton::fields

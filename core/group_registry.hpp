@@ -22,7 +22,7 @@ class GroupFamily {
   virtual std::string name() const = 0;         // as a request names it: "SO"
   virtual std::string title(int n) const = 0;   // as a title names its member: "SO(3)"
   virtual int algebra_dim(int n) const = 0;
-  virtual std::string algebra_dimension() const = 0;  // algebra_dim as a formula in N: "N(N-1)/2"
+  virtual std::string algebra_dimension() const = 0;  // algebra_dim as a formula in n: "n(n-1)/2"
   virtual double log_radius() const = 0;
   virtual bool defines(ProblemKind kind, int n) const = 0;  // the problem is defined on the group (problems.hpp)
   virtual Eigen::MatrixXd random(int n, std::uint64_t seed) const = 0;  // the seeded start

@@ -7,9 +7,7 @@
 namespace lienewton {
 
 void validate(const SolverOptions& options) {
-  validation::check(fields::tol, options.tol, "tol");
-  validation::check(fields::max_iterations, options.max_iterations, "max_iterations");
-  validation::check(fields::restarts, options.restarts, "restarts");
+  fields::check_bounds(options);  // tol, max_iterations, restarts
   if (options.restarts > 0 && !options.continuation)
     validation::unprocessable("restarts", "restarts are the last try of a continued solve: they need continuation: true");
 }

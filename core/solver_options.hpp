@@ -31,7 +31,8 @@ struct SolverOptions {
   bool timed = true;
 };
 
-// Checks tol, max_iterations and restarts (which needs continuation); throws RequestError naming the field.
+// Checks the bounds of its rows in the field table (core/fields.hpp: tol, max_iterations, restarts) and that
+// restarts have continuation; throws RequestError naming the field.
 void validate(const SolverOptions& options);
 // A globalization other than none needs a Newton method: 422 naming "globalization" for the fixed point.
 void check_globalization(Method method, const SolverOptions& options);

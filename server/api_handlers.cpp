@@ -255,18 +255,18 @@ HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
       }
     }
   }
-  return render(req, request_json(req, {"methods", "n", "h"}), service::render_heatmap, options_.sweep_timeout);
+  return render(req, request_json(req, list_fields(fields::sweep | fields::render_heatmap)), service::render_heatmap, options_.sweep_timeout);
 }
 // The GET form of a basin map: methods, b1 and b2 are lists.
 HttpResponse ApiHandlers::render_basins(const HttpRequest& req) {
-  return render(req, request_json(req, {"methods", "b1", "b2"}), service::render_basins, options_.sweep_timeout);
+  return render(req, request_json(req, list_fields(fields::basins | fields::render_basins)), service::render_basins, options_.sweep_timeout);
 }
 // The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
 HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
-  return render(req, request_json(req, {"choices", "h"}), service::render_work_precision, options_.request_timeout);
+  return render(req, request_json(req, list_fields(fields::work_precision | fields::render_work_precision)), service::render_work_precision, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
-  return render(req, request_json(req, {"methods", "differentials"}), service::render_residuals, options_.request_timeout);
+  return render(req, request_json(req, list_fields(fields::solve | fields::render_residuals)), service::render_residuals, options_.request_timeout);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
 // Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).

@@ -1,12 +1,14 @@
 #include "server/json_codec.hpp"
 
 #include "core/fields.hpp"
+#include "core/group_registry.hpp"
 #include "core/validation.hpp"
 
 #include <climits>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <type_traits>
 #include <vector>
 
 namespace lienewton::service {
@@ -18,10 +20,22 @@ constexpr int kMaxDepth = 32;  // deepest legal request is 4 levels; deeper inpu
   throw FieldError("invalid_field", field, message);
 }
 
+std::vector<std::string_view> names_of(const std::vector<const fields::Field*>& rows) {
+  std::vector<std::string_view> out;
+  for (const fields::Field* row : rows) out.emplace_back(row->name);
+  return out;
+}
+
+std::vector<std::string_view> names_of(const std::vector<fields::Field>& rows) {
+  std::vector<std::string_view> out;
+  for (const fields::Field& row : rows) out.emplace_back(row.name);
+  return out;
+}
+
 // An object whose keys must all be known; null values count as absent so clients may send explicit nulls.
 class Fields {
  public:
-  Fields(const json& value, std::string prefix, std::initializer_list<std::string_view> allowed)
+  Fields(const json& value, std::string prefix, std::vector<std::string_view> allowed)
       : object_(value), prefix_(std::move(prefix)) {
     if (!value.is_object()) {
       fail(prefix_.empty() ? std::string() : prefix_.substr(0, prefix_.size() - 1),
@@ -33,6 +47,8 @@ class Fields {
       if (!known) throw FieldError("unknown_field", prefix_ + key, "unknown field " + prefix_ + key);
     }
   }
+  Fields(const json& value, std::string prefix, std::initializer_list<std::string_view> allowed)
+      : Fields(value, std::move(prefix), std::vector<std::string_view>(allowed)) {}
   const json* operator[](std::string_view name) const {
     auto it = object_.find(name);
     if (it == object_.end() || it->is_null()) return nullptr;
@@ -86,7 +102,7 @@ double read_field(const json& v, const fields::NumberField& field, const std::st
   return x;
 }
 
-// An integer within the field's bounds, capped by the server's limit (--max-n, --max-iterations).
+// An integer within the field's bounds, capped by the server's limit (--max-n).
 int read_field(const json& v, const fields::IntegerField& field, const std::string& path, long long cap) {
   return read_int(v, path, field.min, std::min(field.max, cap));
 }
@@ -119,42 +135,6 @@ const json& read_array(const json& v, const std::string& field, std::size_t min_
   return v;
 }
 
-Eigen::Vector3d read_vec3(const json& v, const std::string& field, bool positive) {
-  const std::string message =
-      field + " must be an array of 3 " + (positive ? "positive finite numbers" : "finite numbers");
-  if (!v.is_array() || v.size() != 3) fail(field, message);
-  Eigen::Vector3d out;
-  for (int i = 0; i < 3; ++i) {
-    out[i] = read_number(v[static_cast<std::size_t>(i)], field, message);
-    if (positive && !(out[i] > 0)) fail(field, message);
-  }
-  return out;
-}
-
-// {"index": i, "count": k}, 0 <= i < k: a non-negative index beyond the count is well-formed but names no part
-// (422).
-Shard read_shard(const json& v, const std::string& field) {
-  Fields f(v, field + ".", {"index", "count"});
-  const json* index = f["index"];
-  const json* count = f["count"];
-  if (!index || !count) fail(field, field + " needs index and count");
-  Shard s;
-  s.count = read_int(*count, f.path("count"), 1, 1000000);
-  s.index = read_int(*index, f.path("index"), 0, 1000000);
-  if (s.index >= s.count)
-    throw RequestError(RequestError::Kind::unprocessable, f.path("index"),
-                       f.path("index") + " must be less than " + f.path("count") + " (" + std::to_string(s.count) + ")");
-  return s;
-}
-
-RigidBodyParams read_rigid_body(const json& v, const std::string& field) {
-  Fields f(v, field + ".", {"inertia", "momentum"});
-  RigidBodyParams p;
-  if (auto x = f["inertia"]) p.inertia = read_vec3(*x, f.path("inertia"), true);
-  if (auto x = f["momentum"]) p.momentum = read_vec3(*x, f.path("momentum"), false);
-  return p;
-}
-
 Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
   const std::string message = field + " must be an n x n array of rows of finite numbers (n = " + std::to_string(n) + ")";
   if (!v.is_array() || v.size() != static_cast<std::size_t>(n)) fail(field, message);
@@ -167,47 +147,222 @@ Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
   return m;
 }
 
-// n, with z's size as the default when only z is given.
-int read_n(const Fields& f, const Limits& limits, int fallback) {
-  if (auto x = f["n"]) return read_field(*x, fields::n, "n", limits.max_n);
-  if (auto z = f["z"]; z && z->is_array() && z->size() >= 2 && z->size() <= static_cast<std::size_t>(limits.max_n)) {
-    return static_cast<int>(z->size());
+// ---- Reading a request by the rows of core/fields.hpp --------------------------------------------------------
+
+// The server's limit on top of a row's bound.
+long long cap_of(fields::Cap cap, const Limits& limits) {
+  switch (cap) {
+    case fields::Cap::n: return limits.max_n;
+    case fields::Cap::iterations: return limits.max_iterations;
+    case fields::Cap::threads: return limits.max_threads;
+    case fields::Cap::frames: return limits.max_frames;
+    case fields::Cap::grid_axis:
+      return static_cast<long long>(std::min<std::size_t>(limits.max_grid_cells, LLONG_MAX));
+    case fields::Cap::none: break;
   }
-  return fallback;
+  return LLONG_MAX;
 }
 
-// Whether a request names one dimension n (and may give z), or a grid of them (a sweep reads n itself).
-enum class Dimension { single, grid };
+// What one request's reading knows besides the row: the server's limits and the problem's n so far (matrices
+// and algebra coordinates are sized by it).
+struct Reading {
+  const Limits& limits;
+  int* n = nullptr;       // the request's ProblemSpec::n
+  const std::string* group = nullptr;  // the request's ProblemSpec::group (algebra coordinates are its group's)
+  bool n_given = false;   // the request names n (else a z names it)
+};
 
-// The ProblemSpec fields of a request; the request's Fields has already refused the ones it does not take.
-void read_problem_spec(const Fields& f, const Limits& limits, Dimension dimension, ProblemSpec& p) {
-  if (auto x = f["problem"]) p.kind = read_enum(*x, "problem", problem_from_string, kAllProblems);
-  if (auto x = f["group"]) {
-    if (!x->is_string()) fail("group", "group must be a string naming a registered group");
-    p.group = x->get<std::string>();
-  }
-  if (dimension == Dimension::single) p.n = read_n(f, limits, p.n);
-  if (auto x = f["seed"]) p.seed = read_u64(*x, "seed");
-  if (auto x = f["z"]) p.z = read_matrix(*x, "z", p.n);
-  if (auto x = f["rigid_body"]) p.rigid_body = read_rigid_body(*x, "rigid_body");
+// The enums' lists, for parsing a name by its place in the row's values.
+const auto& all_of(std::type_identity<ProblemKind>) { return kAllProblems; }
+const auto& all_of(std::type_identity<Method>) { return kAllMethods; }
+const auto& all_of(std::type_identity<Differential>) { return kAllDifferentials; }
+const auto& all_of(std::type_identity<LinearSolver>) { return kAllLinearSolvers; }
+const auto& all_of(std::type_identity<Stopping>) { return kAllStoppings; }
+const auto& all_of(std::type_identity<Globalization>) { return kAllGlobalizations; }
+const auto& all_of(std::type_identity<Integrator>) { return kAllIntegrators; }
+const auto& all_of(std::type_identity<Predictor>) { return kAllPredictors; }
+
+template <class T>
+using Tag = std::type_identity<T>;
+
+double read_value(const json& v, const fields::Field& row, const std::string& path, Reading&, Tag<double>) {
+  const double x = read_number(v, path, row.number_message(path));
+  if (!row.contains(x)) fail(path, row.number_message(path));
+  return x;
 }
 
-// The SolverOptions fields of a request, likewise.
-void read_solver_options(const Fields& f, const Limits& limits, SolverOptions& s) {
-  if (auto x = f["method"]) s.method = read_enum(*x, "method", method_from_string, kAllMethods);
-  if (auto x = f["differential"]) s.differential = read_enum(*x, "differential", differential_from_string, kAllDifferentials);
-  if (auto x = f["tol"]) s.tol = read_field(*x, fields::tol, "tol");
-  if (auto x = f["max_iterations"])
-    s.max_iterations = read_field(*x, fields::max_iterations, "max_iterations", limits.max_iterations);
-  if (auto x = f["linear_solver"])
-    s.linear_solver = read_enum(*x, "linear_solver", linear_solver_from_string, kAllLinearSolvers);
-  if (auto x = f["stopping"]) s.stopping = read_enum(*x, "stopping", stopping_from_string, kAllStoppings);
-  if (auto x = f["globalization"])
-    s.globalization = read_enum(*x, "globalization", globalization_from_string, kAllGlobalizations);
-  if (auto x = f["continuation"]) s.continuation = read_bool(*x, "continuation");
-  if (auto x = f["watchdog"]) s.watchdog = read_bool(*x, "watchdog");
-  if (auto x = f["restarts"]) s.restarts = read_field(*x, fields::restarts, "restarts", fields::restarts.max);
-  if (auto x = f["include_iterates"]) s.include_iterates = read_bool(*x, "include_iterates");
+// A number whose absence means "the default of the request's group" (basins' r).
+std::optional<double> read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r,
+                                 Tag<std::optional<double>>) {
+  return read_value(v, row, path, r, Tag<double>{});
+}
+
+int read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r, Tag<int>) {
+  const long long lo = row.minimum ? static_cast<long long>(*row.minimum) : INT_MIN;
+  const long long hi = row.maximum ? static_cast<long long>(*row.maximum) : INT_MAX;
+  return read_int(v, path, lo, std::min(hi, cap_of(row.cap, r.limits)));
+}
+
+bool read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<bool>) {
+  return read_bool(v, path);
+}
+
+std::uint64_t read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<std::uint64_t>) {
+  return read_u64(v, path);
+}
+
+// A name; whether it names something (a registered group) is the core's question (422).
+std::string read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<std::string>) {
+  if (!v.is_string()) fail(path, path + " must be a string");
+  return v.get<std::string>();
+}
+
+template <class E>
+  requires std::is_enum_v<E>
+E read_value(const json& v, const fields::Field& row, const std::string& path, Reading&, Tag<E>) {
+  std::string names;
+  for (const auto& name : row.values) names += (names.empty() ? "" : ", ") + name;
+  const std::string message = path + " must be one of " + names;
+  if (!v.is_string()) fail(path, message);
+  const auto& all = all_of(Tag<E>{});
+  for (std::size_t i = 0; i < row.values.size(); ++i)
+    if (row.values[i] == v.get_ref<const std::string&>()) return all[i];
+  fail(path, message);
+}
+
+// A square matrix of the request's n.
+std::optional<Eigen::MatrixXd> read_value(const json& v, const fields::Field&, const std::string& path, Reading& r,
+                                          Tag<std::optional<Eigen::MatrixXd>>) {
+  return read_matrix(v, path, *r.n);
+}
+
+// A fixed-length vector of numbers within the row's bounds (rigid_body.inertia: positive).
+Eigen::Vector3d read_value(const json& v, const fields::Field& row, const std::string& path, Reading&,
+                           Tag<Eigen::Vector3d>) {
+  const std::string message = path + " must be an array of " + row.items;
+  if (!v.is_array() || v.size() != 3) fail(path, message);
+  Eigen::Vector3d out;
+  for (int i = 0; i < 3; ++i) {
+    out[i] = read_number(v[static_cast<std::size_t>(i)], path, message);
+    if (!row.contains(out[i])) fail(path, message);
+  }
+  return out;
+}
+
+// Coordinates in the algebra of the request's group (SO(n): n(n-1)/2 of them); an unknown group is refused here
+// with the registry's 422.
+std::optional<Eigen::VectorXd> read_value(const json& v, const fields::Field&, const std::string& path, Reading& r,
+                                          Tag<std::optional<Eigen::VectorXd>>) {
+  const GroupFamily& family = group_family(*r.group);
+  const auto dim = static_cast<std::size_t>(family.algebra_dim(*r.n));
+  const std::string message = path + " must be an array of " + std::to_string(dim) +
+                              " finite numbers (coordinates in the algebra, " + family.algebra_dimension() + " of them)";
+  if (!v.is_array() || v.size() != dim) fail(path, message);
+  Eigen::VectorXd out(static_cast<Eigen::Index>(dim));
+  for (std::size_t i = 0; i < dim; ++i) out[static_cast<Eigen::Index>(i)] = read_number(v[i], path, message);
+  return out;
+}
+
+const fields::Field& property(const fields::Field& row, std::string_view name) {
+  for (const fields::Field& p : row.properties)
+    if (p.name == name) return p;
+  throw std::logic_error("no property " + std::string(name) + " in " + row.name);
+}
+
+// {"index": i, "count": k}, 0 <= i < k: a non-negative index beyond the count is well-formed but names no part
+// (422).
+std::optional<Shard> read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r,
+                                Tag<std::optional<Shard>>) {
+  Fields f(v, path + ".", names_of(row.properties));
+  const json* index = f["index"];
+  const json* count = f["count"];
+  if (!index || !count) fail(path, path + " needs index and count");
+  Shard s;
+  s.count = read_value(*count, property(row, "count"), f.path("count"), r, Tag<int>{});
+  s.index = read_value(*index, property(row, "index"), f.path("index"), r, Tag<int>{});
+  if (s.index >= s.count)
+    throw RequestError(RequestError::Kind::unprocessable, f.path("index"),
+                       f.path("index") + " must be less than " + f.path("count") + " (" + std::to_string(s.count) + ")");
+  return s;
+}
+
+template <class Target>
+void read_object(const json& v, const std::string& prefix, const std::vector<const fields::Field*>& rows, Target& target,
+                 Reading& r);
+
+// An object of the row's properties (rigid_body), read into its own struct.
+template <class T>
+  requires std::is_aggregate_v<T>
+T read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r, Tag<T>) {
+  std::vector<const fields::Field*> rows;
+  for (const fields::Field& p : row.properties) rows.push_back(&p);
+  T out{};
+  read_object(v, path + ".", rows, out, r);
+  return out;
+}
+
+// An array: its size within the row's [min_items, max_items] (capped), each element read as the row describes.
+template <class T>
+std::vector<T> read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r,
+                          Tag<std::vector<T>>) {
+  const long long cap = cap_of(row.cap_items, r.limits);
+  const auto& items = read_array(v, path, row.min_items,
+                                 std::min<std::size_t>(row.max_items, static_cast<std::size_t>(cap)), row.items);
+  std::vector<T> out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    // Objects are named by their place (choices[2].method), plain values by the field (h).
+    const std::string item_path = row.type == fields::Type::object ? path + "[" + std::to_string(i) + "]" : path;
+    out.push_back(read_value(items[i], row, item_path, r, Tag<T>{}));
+  }
+  return out;
+}
+
+// The part of a request a member belongs to: the request itself, its ProblemSpec or SolverOptions, or (a basin
+// map) its solve request's; nullptr when the request has no such part.
+template <class C, class R>
+C* part(R& r) {
+  if constexpr (std::is_same_v<C, R>) return &r;
+  else if constexpr (std::is_same_v<C, ProblemSpec> && requires { r.problem; }) return &r.problem;
+  else if constexpr (std::is_same_v<C, SolverOptions> && requires { r.solver; }) return &r.solver;
+  else if constexpr (requires { r.solve; }) return part<C>(r.solve);
+  else return nullptr;
+}
+
+template <class R, class C, class T>
+void land(R& request, T C::*member, const json& v, const fields::Field& row, const std::string& path, Reading& r) {
+  C* target = part<C>(request);
+  if (!target) return;
+  if constexpr (std::is_same_v<C, ProblemSpec> && std::is_same_v<T, std::optional<Eigen::MatrixXd>>) {
+    // z without n: its size is n.
+    if (!r.n_given && v.is_array() && v.size() >= 2 && v.size() <= static_cast<std::size_t>(r.limits.max_n))
+      target->n = static_cast<int>(v.size());
+  }
+  target->*member = read_value(v, row, path, r, Tag<T>{});
+}
+
+// Reads the rows present in the object, in the table's order (the first bad field is the one reported).
+template <class Target>
+void read_object(const json& v, const std::string& prefix, const std::vector<const fields::Field*>& rows, Target& target,
+                 Reading& r) {
+  Fields f(v, prefix, names_of(rows));
+  for (const fields::Field* row : rows) {
+    const json* x = f[row->name];
+    if (!x) continue;
+    for (const fields::Member& member : row->lands)
+      std::visit([&](auto m) { land(target, m, *x, *row, f.path(row->name), r); }, member);
+  }
+}
+
+// A route's request: every row the route takes, read into the request struct.
+template <class Request>
+Request read_request(const json& body, fields::Route route, const Limits& limits) {
+  Request request;
+  Reading r{limits};
+  r.n = &part<ProblemSpec>(request)->n;
+  r.group = &part<ProblemSpec>(request)->group;
+  r.n_given = body.is_object() && body.contains("n") && !body["n"].is_null();
+  read_object(body, "", fields::fields_of(route), request, r);
+  return request;
 }
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -259,37 +414,11 @@ json parse_body(std::string_view text) {
 }
 
 SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "group", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z", "y0",
-                      "include_iterates", "rigid_body", "linear_solver", "stopping", "globalization",
-                      "continuation", "watchdog", "restarts"});
-  SolveRequest r;
-  read_problem_spec(f, limits, Dimension::single, r.problem);
-  read_solver_options(f, limits, r.solver);
-  if (auto x = f["h"]) r.h = read_h(*x, "h");
-  if (auto x = f["y0"]) r.y0 = read_matrix(*x, "y0", r.problem.n);
-  return r;
+  return read_request<SolveRequest>(body, fields::solve, limits);
 }
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "group", "methods", "differential", "n", "h", "seed", "tol", "max_iterations", "rigid_body",
-                      "stopping", "linear_solver", "threads", "shard", "globalization", "continuation", "watchdog", "restarts"});
-  SweepRequest r;
-  read_problem_spec(f, limits, Dimension::grid, r.problem);
-  read_solver_options(f, limits, r.solver);
-  const std::size_t max_axis = std::min<std::size_t>(limits.max_grid_cells, 100000);
-  if (auto x = f["methods"]) {
-    r.methods.clear();
-    for (const auto& m : read_array(*x, "methods", 1, 16, "method names"))
-      r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
-  }
-  if (auto x = f["n"]) {
-    for (const auto& v : read_array(*x, "n", 1, max_axis, "integers")) r.n.push_back(read_field(v, fields::n, "n", limits.max_n));
-  }
-  if (auto x = f["h"]) {
-    for (const auto& v : read_array(*x, "h", 1, max_axis, "step sizes")) r.h.push_back(read_h(v, "h"));
-  }
-  if (auto x = f["threads"]) r.threads = read_int(*x, "threads", 0, limits.max_threads);
-  if (auto x = f["shard"]) r.shard = read_shard(*x, "shard");
+  SweepRequest r = read_request<SweepRequest>(body, fields::sweep, limits);
   // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
@@ -305,17 +434,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 }
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "group", "n", "h", "t_end", "integrator", "method", "differential", "tol", "max_iterations",
-                      "seed", "z", "frames", "rigid_body", "stopping", "linear_solver", "globalization",
-                      "continuation", "watchdog", "restarts", "predictor"});
-  IntegrateRequest r;
-  read_problem_spec(f, limits, Dimension::single, r.problem);
-  read_solver_options(f, limits, r.solver);
-  if (auto x = f["h"]) r.h = read_h(*x, "h");
-  if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
-  if (auto x = f["integrator"]) r.integrator = read_enum(*x, "integrator", integrator_from_string, kAllIntegrators);
-  if (auto x = f["frames"]) r.frames = read_int(*x, "frames", 0, limits.max_frames);
-  if (auto x = f["predictor"]) r.predictor = read_enum(*x, "predictor", predictor_from_string, kAllPredictors);
+  IntegrateRequest r = read_request<IntegrateRequest>(body, fields::integrate, limits);
   if (r.t_end / r.h > limits.max_steps) {
     fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
   }
@@ -323,28 +442,7 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 }
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
-  Fields f(body, "", {"problem", "group", "n", "t_end", "choices", "h", "tol", "max_iterations", "seed", "rigid_body",
-                      "stopping", "linear_solver", "globalization", "continuation", "watchdog", "restarts", "predictor"});
-  WorkPrecisionRequest r;
-  read_problem_spec(f, limits, Dimension::single, r.problem);
-  read_solver_options(f, limits, r.solver);
-  if (auto x = f["t_end"]) r.t_end = read_field(*x, fields::t_end, "t_end");
-  if (auto x = f["predictor"]) r.predictor = read_enum(*x, "predictor", predictor_from_string, kAllPredictors);
-  if (auto x = f["choices"]) {
-    const auto& arr = read_array(*x, "choices", 1, 64, "choice objects");
-    for (std::size_t i = 0; i < arr.size(); ++i) {
-      const std::string prefix = "choices[" + std::to_string(i) + "]";
-      Fields c(arr[i], prefix + ".", {"integrator", "method", "differential"});
-      WorkPrecisionChoice choice;
-      if (auto v = c["integrator"]) choice.integrator = read_enum(*v, c.path("integrator"), integrator_from_string, kAllIntegrators);
-      if (auto v = c["method"]) choice.method = read_enum(*v, c.path("method"), method_from_string, kAllMethods);
-      if (auto v = c["differential"]) choice.differential = read_enum(*v, c.path("differential"), differential_from_string, kAllDifferentials);
-      r.choices.push_back(choice);
-    }
-  }
-  if (auto x = f["h"]) {
-    for (const auto& v : read_array(*x, "h", 1, 64, "step sizes")) r.h.push_back(read_h(v, "h"));
-  }
+  WorkPrecisionRequest r = read_request<WorkPrecisionRequest>(body, fields::work_precision, limits);
   // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.
   std::vector<double> hs = r.h;
   if (hs.empty()) for (int k = 2; k <= 7; ++k) hs.push_back(std::ldexp(1.0, -k));
@@ -365,51 +463,16 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
 // no iterates) plus the plane: methods, size, r, b1, b2.
 BasinRequest basin_request_from_json(const json& body, const Limits& limits) {
   if (!body.is_object()) fail("", "the request must be a JSON object");
-  json equation = body;
-  const auto take = [&](const char* name) {
-    auto it = equation.find(name);
-    if (it == equation.end() || it->is_null()) return json();
-    json v = *it;
-    equation.erase(it);
-    return v;
-  };
   for (const char* name : {"method", "y0", "include_iterates"}) {
     if (body.contains(name))
       throw FieldError("unknown_field", name, std::string("unknown field ") + name + " (a basin map runs every one of "
                                               "methods from every start of its grid)");
   }
-  BasinRequest r;
-  const json methods = take("methods"), size = take("size"), radius = take("r"), shard = take("shard");
-  const json b[2] = {take("b1"), take("b2")};
-  r.solve = solve_request_from_json(equation, limits);
-  if (!methods.is_null()) {
-    r.methods.clear();
-    for (const auto& m : read_array(methods, "methods", 1, std::size(kAllMethods), "method names"))
-      r.methods.push_back(read_enum(m, "methods", method_from_string, kAllMethods));
-  }
-  // Any integer is read: the core refuses a size beyond its largest map (422), the server's output cap with 413.
-  if (!size.is_null()) r.size = read_int(size, "size", 1, INT_MAX);
-  if (!shard.is_null()) {
-    r.shard = read_shard(shard, "shard");
+  BasinRequest r = read_request<BasinRequest>(body, fields::basins, limits);
+  if (r.shard) {  // the parts of one map carry the same key
     json request = body;
     request.erase("shard");
     r.request_key = dump(request);
-  }
-  if (!radius.is_null()) {
-    const std::string message = "r must be a finite number in (0, 100]";
-    r.radius = read_number(radius, "r", message);
-    if (!(r.radius > 0 && r.radius <= 100)) fail("r", message);
-  }
-  const std::size_t dim = static_cast<std::size_t>(r.solve.problem.n) * static_cast<std::size_t>(r.solve.problem.n - 1) / 2;
-  for (int k = 0; k < 2; ++k) {
-    if (b[k].is_null()) continue;
-    const std::string name = k == 0 ? "b1" : "b2";
-    const std::string message = name + " must be an array of " + std::to_string(dim) +
-                                " finite numbers (coordinates in the algebra, n(n-1)/2 of them)";
-    if (!b[k].is_array() || b[k].size() != dim) fail(name, message);
-    Eigen::VectorXd v(static_cast<Eigen::Index>(dim));
-    for (std::size_t i = 0; i < dim; ++i) v[static_cast<Eigen::Index>(i)] = read_number(b[k][i], name, message);
-    (k == 0 ? r.b1 : r.b2) = v;
   }
   return r;
 }
@@ -670,7 +733,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"residual", finite_or_null(t.residual)},
          {"step", finite_or_null(t.step)},
          {"angle", finite_or_null(t.angle)},
-         {"distance_to_pi", finite_or_null(t.log_boundary_distance)},
+         {"distance_to_pi", finite_or_null(t.distance_to_pi())},
          {"orthogonality_error", finite_or_null(t.orthogonality_error)},
          {"seconds", finite_or_null(t.seconds)},
          {"cpu_seconds", finite_or_null(t.cpu_seconds)}};

@@ -8,8 +8,9 @@
 #include "core/options.hpp"
 #include "core/status.hpp"
 #include "core/fields.hpp"
-#include "core/solvers/continuation.hpp"
+#include "server/json_codec.hpp"
 #include "server/openapi_labels.hpp"
+#include "server/render_requests.hpp"
 #include "server/routes.hpp"
 
 namespace lienewton::service {
@@ -37,16 +38,95 @@ json object(json properties, std::vector<std::string> required = {}, bool closed
   if (closed) o["additionalProperties"] = false;
   return o;
 }
-// A bounded field's schema from its row in core/fields.hpp.
-json schema_of(const fields::NumberField& f) {
-  json s{{"type", "number"}, {"minimum", f.min}, {"maximum", f.max}, {"description", f.description}};
-  if (f.min_exclusive) s["exclusiveMinimum"] = true;
-  if (!std::isnan(f.default_value)) s["default"] = f.default_value;
+// Where a limit of the server's stands for a row's maximum in the schema (sweep threads): its default.
+long long default_cap(fields::Cap cap) {
+  const Limits limits;
+  switch (cap) {
+    case fields::Cap::n: return limits.max_n;
+    case fields::Cap::iterations: return limits.max_iterations;
+    case fields::Cap::threads: return limits.max_threads;
+    case fields::Cap::frames: return limits.max_frames;
+    case fields::Cap::grid_axis: return static_cast<long long>(limits.max_grid_cells);
+    case fields::Cap::none: break;
+  }
+  return 0;
+}
+
+json properties(const std::vector<const fields::Field*>& rows);
+
+// A request field's schema, from its row in the field table (core/fields.hpp, picture options in
+// server/render_requests.cpp): type, bounds, enum and default on the value (an array's items), the
+// description on the field.
+json schema_of(const fields::Field& f) {
+  using fields::Type;
+  const auto bound = [&](double x) {  // an integer field's bounds are integers, where one holds them
+    return f.type == Type::integer && std::abs(x) < 9e18 ? json(static_cast<long long>(x)) : json(x);
+  };
+  json s;
+  switch (f.type) {
+    case Type::number: s = {{"type", "number"}}; break;
+    case Type::integer: s = {{"type", "integer"}}; break;
+    case Type::boolean: s = {{"type", "boolean"}}; break;
+    case Type::string: s = {{"type", "string"}}; break;
+    case Type::matrix: s = array_of(array_of(json{{"type", "number"}})); break;
+    case Type::object: {
+      std::vector<const fields::Field*> rows;
+      for (const fields::Field& p : f.properties) rows.push_back(&p);
+      s = f.schema.empty() ? object(properties(rows), f.required) : ref(f.schema);
+      break;
+    }
+  }
+  if (f.type == Type::number || f.type == Type::integer) {
+    if (const auto min = f.schema_minimum ? f.schema_minimum : f.minimum) s["minimum"] = bound(*min);
+    if (f.exclusive_minimum) s["exclusiveMinimum"] = true;
+    std::optional<double> max = f.schema_maximum;
+    if (!max && f.publish_cap) max = static_cast<double>(default_cap(f.cap));
+    if (!max && f.cap == fields::Cap::none) max = f.maximum;
+    if (max) s["maximum"] = bound(*max);
+  }
+  if (!f.values.empty()) s["enum"] = f.values;
+  std::visit([&](const auto& d) {
+    if constexpr (!std::is_same_v<std::decay_t<decltype(d)>, std::monostate>) s["default"] = d;
+  }, f.default_value);
+  if (f.array) {
+    s = json{{"type", "array"}, {"items", std::move(s)}};
+    if (f.max_items > 0 && f.min_items == f.max_items) {  // a fixed length (rigid_body's vectors) is part of the type
+      s["minItems"] = f.min_items;
+      s["maxItems"] = f.max_items;
+    }
+  }
+  if (!f.description.empty() && !s.contains("$ref")) s["description"] = f.description;
   return s;
 }
-json schema_of(const fields::IntegerField& f) {  // no maximum: the server's cap (--max-n ...) is lower
-  return json{{"type", "integer"}, {"minimum", f.min}, {"default", f.default_value}, {"description", f.description}};
+
+json properties(const std::vector<const fields::Field*>& rows) {
+  json out = json::object();
+  for (const fields::Field* row : rows) out[row->name] = schema_of(*row);
+  return out;
 }
+
+// "960 x 640"
+std::string size_text(FigureSize size) { return std::to_string(size.width) + " x " + std::to_string(size.height); }
+
+// The picture options a render route takes.
+std::vector<const fields::Field*> picture_rows(fields::Route route) {
+  std::vector<const fields::Field*> out;
+  for (const fields::Field& f : picture_fields())
+    if (f.takes(route)) out.push_back(&f);
+  return out;
+}
+
+// The named schemas of object rows (RigidBody, WorkPrecisionChoice), from their properties.
+void add_object_schemas(json& s, const std::vector<fields::Field>& rows) {
+  for (const fields::Field& f : rows) {
+    if (f.schema.empty() || f.properties.empty()) continue;
+    std::vector<const fields::Field*> props;
+    for (const fields::Field& p : f.properties) props.push_back(&p);
+    s[f.schema] = object(properties(props));
+  }
+}
+
+
 json matrix(const char* description) {
   json m = array_of(array_of(json{{"type", "number"}}));
   m["description"] = description;
@@ -54,71 +134,17 @@ json matrix(const char* description) {
 }
 
 json schemas() {
-  const json problem = enum_schema(kAllProblems, "test problem");
-  const json method = enum_schema(kAllMethods, "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2");
-  const json differential = enum_schema(kAllDifferentials, "how the Newton differential is formed");
-  const json integrator = enum_schema(kAllIntegrators, "implicit Lie group integrator");
-  json stopping = enum_schema(kAllStoppings,
-                              "stopping rule of Version 2 and the fixed point: residual stops on ||f(y_n)|| = "
-                              "||log(z^-1 y_n) - h g(y_n)|| <= tol as in the paper's section 5; algebra-residual on "
-                              "||f~(v_n)|| (3.21), the test Version 2 would normally use. Version 1 always uses ||f(y_n)||");
-  stopping["default"] = "residual";
-  json globalization = enum_schema(
-      kAllGlobalizations,
-      "Newton only (422 for fixed-point): none = the paper's full steps; line-search = Armijo backtracking on "
-      "1/2 ||f||^2 along y exp(alpha u) (Version 1) or v + alpha u (Version 2), Levenberg-Marquardt "
-      "(D^T D + mu I) u = -D^T f when Newton's step fails; trust-region = dogleg on 1/2 ||f + D s||^2");
-  globalization["default"] = "none";
-  const json continuation = json{
-      {"type", "boolean"}, {"default", false},
-      {"description", "first solve at h (with a globalization, then also the plain Newton at h); only when that "
-                      "fails, reach h through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= 1/16; a failed stage is "
-                      "retried at the geometric mean of its h and the last reached one), each stage started at the "
-                      "previous root; failing that, from the stiff end: solve from the identity of z's component at h, "
-                      "else at 2h, ..., 16h and halve back to h from the root found; failing that, at h/2, h/4, ..., 1/16 "
-                      "from the request's start and from that identity, and up to h from the first root found; "
-                      "failing that, the restarts (restarts). With a globalization every stage that finds no root "
-                      "is solved again from the same start with full steps. The result's continuation lists the "
-                      "stages, and only a solve at h decides the status"}};
-  json restarts = schema_of(fields::restarts);
-  restarts["maximum"] = fields::restarts.max;
-  restarts["description"] = std::string(fields::restarts.description) + " (else 422), the search's last try: at most " +
-                            std::to_string(kRestartIterations) + " iterations each, the requested globalization, no "
-                            "watchdog, from y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at most " +
-                            fields::format_bound(kRestartAngle) + " rad; the first that converges ends the search";
-  const json watchdog = json{
-      {"type", "boolean"}, {"default", false},
-      {"description", "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it "
-                      "jumps at log's cut), take it anyway, up to 32 full steps until one falls below the Armijo "
-                      "bound of the iterate it started from, else go back there and take the globalised step; at "
-                      "most 3 such episodes go back. Continuation's stages never use it"}};
-  json predictor = enum_schema(kAllPredictors,
-                               "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "
-                               "lie-euler = Z_i exp(h a_ii g(Z_i)), residual O(h^2) instead of O(h), kept only when its "
-                               "residual is the smaller");
-  predictor["default"] = "lie-euler";
+  const json method = schema_of(*fields::find(fields::solve, "method"));
+  const json globalization = schema_of(*fields::find(fields::solve, "globalization"));
   const json status = enum_schema(kAllStatuses, "how the solve ended");
-  const json h = schema_of(fields::h);
-  const json n = schema_of(fields::n);
-  const json tol = schema_of(fields::tol);
-  const json max_iterations = schema_of(fields::max_iterations);
-  const json seed = json{{"type", "integer"}, {"minimum", 0}, {"maximum", 18446744073709551615.0}, {"default", 1}, {"description", "unsigned 64-bit seed of the random start point"}};
-  const json t_end = schema_of(fields::t_end);
-  const json linear_solver = json{{"type", "string"}, {"enum", {"auto", "lu", "gmres"}}, {"default", "auto"},
-                                  {"description", "auto: dense LU up to N = 16, matrix-free GMRES above"}};
-  const json width = json{{"type", "integer"}, {"minimum", 64}, {"maximum", 4096}};
-  const json rigid_body = object({{"inertia", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "principal moments (positive)"}}},
-                                  {"momentum", json{{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}, {"description", "spatial angular momentum"}}}});
   json s;
-  s["RigidBody"] = rigid_body;
-  s["SolveRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"method", method}, {"differential", differential},
-                              {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                              {"z", matrix("start point, N x N rows, orthogonal to 1e-10 (default: from seed)")},
-                              {"y0", matrix("starting guess of the iteration (default: z, as the paper): N x N rows, "
-                                            "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
-                                            "equation's z")},
-                              {"include_iterates", json{{"type", "boolean"}, {"default", false}}},
-                              {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
+  // The requests: a route's schema is the rows whose route set includes it.
+  const std::pair<const char*, fields::Route> requests[] = {
+      {"SolveRequest", fields::solve}, {"SweepRequest", fields::sweep}, {"BasinRequest", fields::basins},
+      {"IntegrateRequest", fields::integrate}, {"WorkPrecisionRequest", fields::work_precision}};
+  for (const auto& [name, route] : requests) s[name] = object(properties(fields::fields_of(route)));
+  add_object_schemas(s, fields::request_fields());
+  add_object_schemas(s, picture_fields());
   const json trace_props = {{"iteration", integer("n")},
                             {"residual", nullable_number("||f(y_n)||, f(y) = log(z^-1 y) - h g(y) (3.6), every method")},
                             {"algebra_residual", nullable_number("||f~(v_n)|| (3.21): Version 2 and the fixed point only")},
@@ -169,16 +195,6 @@ json schemas() {
                             {"status", "reason", "iterations", "rate", "rate_reliable", "iterate", "residual", "floor",
                              "orthogonality_error", "z_adjustment", "reorthogonalisations", "y", "trace", "seconds",
                              "cpu_seconds", "linear_solver"}, false);
-  s["SweepRequest"] = object({{"problem", problem}, {"methods", array_of(method)}, {"differential", differential},
-                              {"n", array_of(n)}, {"h", array_of(h)}, {"seed", seed}, {"tol", tol},
-                              {"max_iterations", max_iterations}, {"rigid_body", ref("RigidBody")},
-                              {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization},
-                              {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts},
-                              {"threads", json{{"type", "integer"}, {"minimum", 0}, {"maximum", 16}, {"default", 0},
-                                               {"description", "threads of this sweep (0: all cores)"}}},
-                              {"shard", object({{"index", integer("this part, 0 <= index < count")},
-                                                {"count", integer("parts of the grid (>= 1)")}},
-                                               {"index", "count"})}});
   s["SweepCell"] = object({{"method", method}, {"n", integer("N")}, {"h", number("step size")}, {"status", status},
                            {"reason", json{{"type", "string"}}}, {"iterations", integer("")},
                            {"rate", nullable_number("")}, {"residual", nullable_number("")}},
@@ -189,24 +205,6 @@ json schemas() {
                                                {"cell_indices", array_of(integer("grid position of each cell"))}},
                                               {"index", "count", "grid_cells", "cell_indices"})}},
                             {"cells", "seconds"}, false);
-  const json coordinates = json{{"type", "array"}, {"items", {{"type", "number"}}},
-                                 {"description", "n(n-1)/2 coordinates in the algebra (basis E_ij - E_ji, i < j row-major); "
-                                                 "normalised before use"}};
-  s["BasinRequest"] = object({{"problem", problem}, {"n", json{{"type", "integer"}, {"minimum", 3}, {"description", "matrix size N (at least 3: the plane needs two directions)"}}},
-                              {"h", h}, {"seed", seed}, {"z", matrix("the equation's z (default: from seed); the starts move, z stays")},
-                              {"rigid_body", ref("RigidBody")}, {"methods", array_of(method)}, {"differential", differential},
-                              {"tol", tol}, {"max_iterations", max_iterations}, {"stopping", stopping}, {"linear_solver", linear_solver},
-                              {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts},
-                              {"size", json{{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxBasinSize}, {"default", kDefaultBasinSize},
-                                            {"description", "pixels per side: size x size starts per method (beyond 512: 422; "
-                                                            "beyond --max-output-values numbers: 413)"}}},
-                              {"r", json{{"type", "number"}, {"exclusiveMinimum", true}, {"minimum", 0}, {"maximum", 100},
-                                         {"default", 3.141592653589793}, {"description", "(a, b) in [-r, r]^2"}}},
-                              {"b1", coordinates}, {"b2", coordinates},
-                              {"shard", object({{"index", integer("this part, 0 <= index < count")},
-                                                {"count", integer("parts of the map (>= 1): the part computes rows r "
-                                                                  "with r % count == index")}},
-                                               {"index", "count"})}});
   const json pixel_lists = object({{"method", method}, {"status", array_of(status)},
                                    {"root", array_of(json{{"type", "integer"}, {"nullable", true}})},
                                    {"iterations", array_of(json{{"type", "integer"}})}}, {}, false);
@@ -237,12 +235,6 @@ json schemas() {
                                                                                "different requests"}}}},
                         {"index", "count", "rows"})}},
       {"grid", "rows", "roots", "methods", "complete", "seconds"}, false);
-  s["IntegrateRequest"] = object({{"problem", problem}, {"n", n}, {"h", h}, {"t_end", t_end}, {"integrator", integrator},
-                                  {"method", method}, {"differential", differential}, {"tol", tol},
-                                  {"max_iterations", max_iterations}, {"seed", seed}, {"z", matrix("y(0)")},
-                                  {"frames", json{{"type", "integer"}, {"minimum", 0}, {"description", "evenly spaced states to return"}}},
-                                  {"predictor", predictor},
-                                  {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
                             {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
                            {}, false);
@@ -260,11 +252,6 @@ json schemas() {
                                                                       "of render/frames with the same request"}}},
                                  {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
                                 {}, false);
-  const json choice = object({{"integrator", integrator}, {"method", method}, {"differential", differential}});
-  s["WorkPrecisionChoice"] = choice;
-  s["WorkPrecisionRequest"] = object({{"problem", problem}, {"n", n}, {"t_end", t_end}, {"choices", array_of(ref("WorkPrecisionChoice"))},
-                                      {"h", array_of(h)}, {"tol", tol}, {"max_iterations", max_iterations}, {"seed", seed},
-                                      {"predictor", predictor}, {"rigid_body", ref("RigidBody")}, {"linear_solver", linear_solver}, {"stopping", stopping}, {"globalization", globalization}, {"continuation", continuation}, {"watchdog", watchdog}, {"restarts", restarts}});
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},
@@ -288,33 +275,28 @@ json schemas() {
                       "\"integrate\" or by any of integrator/t_end/frames; the trajectory's states are drawn, frames "
                       "defaults to 16), plus the picture options below. Other N: 422."},
       {"type", "object"},
-      {"properties", {{"kind", json{{"type", "string"}, {"enum", {"solve", "integrate"}}}}, {"width", width}, {"height", width},
-                      {"azimuth_deg", number("camera azimuth")}, {"elevation_deg", number("camera elevation")},
-                      {"upto", json{{"type", "integer"}, {"minimum", 0},
-                                    {"description", "draw frames 0..upto only, upto bold (a slider over iterates or "
-                                                    "time steps); 422 if there are not that many"}}}}}};
+      {"properties", properties(picture_rows(fields::render_frames))}};
   s["RenderHeatmapRequest"] = json{
       {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
       {"type", "object"},
-      {"properties", {{"sweep", ref("SweepResult")},
-                      {"metric", json{{"type", "string"}, {"enum", {"iterations", "rate", "residual"}}}},
-                      {"width", width}, {"height", width}}}};
+      {"properties", properties(picture_rows(fields::render_heatmap))}};
   s["RenderBasinsRequest"] = json{
       {"description", "A BasinRequest plus width/height (0 or absent: automatic)."},
       {"type", "object"},
-      {"properties", {{"width", width}, {"height", width}}}};
+      {"properties", properties(picture_rows(fields::render_basins))}};
   s["RenderWorkPrecisionRequest"] = json{
-      {"description", "A WorkPrecisionRequest plus width/height (default 960 x 640). Each choice is one line through "
-                      "its converged h (largest first), styled as x-lienewton.series_styles in order; the legend gives "
-                      "the fitted order p. No converged run at all: 422."},
+      {"description", "A WorkPrecisionRequest plus width/height (default " + size_text(kWorkPrecisionFigure) +
+                          "). Each choice is one line through its converged h (largest first), styled as "
+                          "x-lienewton.series_styles in order; the legend gives the fitted order p. No converged run "
+                          "at all: 422."},
       {"type", "object"},
-      {"properties", {{"width", width}, {"height", width}}}};
+      {"properties", properties(picture_rows(fields::render_work_precision))}};
   s["RenderResidualsRequest"] = json{
       {"description", "A SolveRequest without method and differential, plus the lists below and width/height "
-                      "(default 1200 x 520). One solve per method x differential (fixed point once); left panel "
+                      "(default " + size_text(kResidualsFigure) + "). One solve per method x differential (fixed point once); left panel "
                       "||f(y_n)|| against the solver's own CPU time (TraceRecord.cpu_seconds), right panel against n."},
       {"type", "object"},
-      {"properties", {{"methods", array_of(method)}, {"differentials", array_of(differential)}, {"width", width}, {"height", width}}}};
+      {"properties", properties(picture_rows(fields::render_residuals))}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
   s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},

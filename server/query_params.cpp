@@ -1,5 +1,7 @@
 #include "server/query_params.hpp"
 
+#include "server/render_requests.hpp"
+
 namespace lienewton::service {
 namespace {
 
@@ -19,6 +21,14 @@ json scalar(const std::string& text) {
 }
 
 }  // namespace
+
+std::set<std::string> list_fields(fields::Routes routes) {
+  std::set<std::string> out;
+  for (const auto* rows : {&fields::request_fields(), &picture_fields()})
+    for (const fields::Field& f : *rows)
+      if (f.array && (f.routes & routes)) out.insert(f.name);
+  return out;
+}
 
 json query_to_json(const std::multimap<std::string, std::string>& params, const std::set<std::string>& list_fields) {
   json out = json::object();

@@ -7,12 +7,16 @@
 #include <set>
 #include <string>
 
+#include "core/fields.hpp"
 #include "server/json_codec.hpp"
 
 namespace lienewton::service {
 
 // list_fields are array-valued in the JSON request: a single value there becomes a one-element array
 // (methods=newton-group). Throws FieldError (duplicate_field / invalid_field) naming the parameter.
+// The array-valued fields of the given routes (their rows and their picture options): sweep's methods, n, h.
+std::set<std::string> list_fields(fields::Routes routes);
+
 json query_to_json(const std::multimap<std::string, std::string>& params, const std::set<std::string>& list_fields = {});
 
 }  // namespace lienewton::service

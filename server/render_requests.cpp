@@ -19,15 +19,23 @@
 namespace lienewton::service {
 namespace {
 
+const fields::Field& picture(std::string_view name) {
+  for (const fields::Field& f : picture_fields())
+    if (f.name == name) return f;
+  throw std::logic_error("no picture option " + std::string(name));
+}
+
 // Takes an integer picture option out of the request (the rest goes to the request codec).
-int take_int(json& request, const char* field, int fallback, int lo, int hi, bool zero_ok) {
+int take_int(json& request, const char* field, int fallback, bool zero_ok) {
   auto it = request.find(field);
   if (it == request.end() || it->is_null()) {
     if (it != request.end()) request.erase(it);
     return fallback;
   }
-  const std::string message = std::string(field) + " must be an integer in [" + std::to_string(lo) + ", " +
-                              std::to_string(hi) + "]" + (zero_ok ? " or 0 for automatic" : "");
+  const fields::Field& row = picture(field);
+  const long long lo = static_cast<long long>(*row.minimum);
+  const long long hi = row.maximum ? static_cast<long long>(*row.maximum) : INT_MAX;
+  const std::string message = row.integer_message(field, hi) + (zero_ok ? " or 0 for automatic" : "");
   if (!it->is_number_integer()) throw FieldError("invalid_field", field, message);
   const auto v = it->is_number_unsigned() ? static_cast<long long>(std::min<std::uint64_t>(it->get<std::uint64_t>(), LLONG_MAX))
                                           : it->get<std::int64_t>();
@@ -42,10 +50,12 @@ double take_angle(json& request, const char* field, double fallback) {
     if (it != request.end()) request.erase(it);
     return fallback;
   }
-  const std::string message = std::string(field) + " must be a finite number of degrees in [-360, 360]";
+  const fields::Field& row = picture(field);
+  const std::string message = std::string(field) + " must be a finite number of degrees in [" +
+                              fields::format_bound(*row.minimum) + ", " + fields::format_bound(*row.maximum) + "]";
   if (!it->is_number()) throw FieldError("invalid_field", field, message);
   const double v = it->get<double>();
-  if (!(v >= -360 && v <= 360)) throw FieldError("invalid_field", field, message);
+  if (!(v >= *row.minimum && v <= *row.maximum)) throw FieldError("invalid_field", field, message);
   request.erase(it);
   return v;
 }
@@ -88,7 +98,8 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
   std::string names;
   for (E e : all) names += (names.empty() ? "" : ", ") + std::string(to_string(e));
   const std::string message = std::string(field) + " must be a non-empty list of " + names;
-  if (!it->is_array() || it->empty() || it->size() > 16) throw FieldError("invalid_field", field, message);
+  if (!it->is_array() || it->empty() || it->size() > picture(field).max_items)
+    throw FieldError("invalid_field", field, message);
   std::vector<E> out;
   for (const json& v : *it) {
     const std::optional<E> e = v.is_string() ? parse(v.get<std::string>()) : std::nullopt;
@@ -121,16 +132,66 @@ std::vector<unsigned char> draw_figure(render::Renderer& renderer, MakeFigure ma
 
 }  // namespace
 
+const std::vector<fields::Field>& picture_fields() {
+  using fields::Field;
+  using fields::Type;
+  static const std::vector<Field> rows = [] {
+    constexpr fields::Routes all = fields::render_frames | fields::render_heatmap | fields::render_basins | fields::render_work_precision | fields::render_residuals;
+    const Field size{.name = "width", .type = Type::integer, .routes = all,
+                     .description = "image width in pixels (heatmap and basins: 0 or absent, automatic)",
+                     .minimum = static_cast<double>(render::kMinImageSize),
+                     .maximum = static_cast<double>(render::kMaxImageSize)};
+    Field height = size;
+    height.name = "height";
+    height.description = "image height in pixels (heatmap and basins: 0 or absent, automatic)";
+    const Field azimuth{.name = "azimuth_deg", .type = Type::number, .routes = fields::render_frames,
+                        .description = "camera azimuth", .minimum = -360.0, .maximum = 360.0};
+    Field elevation = azimuth;
+    elevation.name = "elevation_deg";
+    elevation.description = "camera elevation";
+    // The residuals' lists: a value of the solve's method or differential per element.
+    const auto list_of = [](const char* one, const char* name, const char* items) {
+      Field list = *fields::find(fields::solve, one);
+      list.name = name;
+      list.routes = fields::render_residuals;
+      list.lands = {};
+      list.array = true;
+      list.min_items = 1;
+      list.max_items = 16;
+      list.items = items;
+      return list;
+    };
+    const Field methods = list_of("method", "methods", "method names");
+    const Field differentials = list_of("differential", "differentials", "differential names");
+    return std::vector<Field>{
+        Field{.name = "kind", .type = Type::string, .routes = fields::render_frames,
+              .description = "what is drawn: a solve's iterates or an integration's states (default: integrate when "
+                             "any of integrator, t_end, frames is given)",
+              .values = {"solve", "integrate"}},
+        size, height, azimuth, elevation,
+        Field{.name = "upto", .type = Type::integer, .routes = fields::render_frames,
+              .description = "draw frames 0..upto only, upto bold (a slider over iterates or time steps); 422 if "
+                             "there are not that many",
+              .minimum = 0.0},
+        Field{.name = "sweep", .type = Type::object, .routes = fields::render_heatmap,
+              .description = "a finished sweep to draw instead of a sweep request", .schema = "SweepResult"},
+        Field{.name = "metric", .type = Type::string, .routes = fields::render_heatmap,
+              .description = "what colours a converged cell", .values = fields::names(render::kAllHeatmapMetrics)},
+        methods, differentials};
+  }();
+  return rows;
+}
+
 std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
   render::FramesOptions options;
-  options.width = take_int(request, "width", options.width, render::kMinImageSize, render::kMaxImageSize, false);
-  options.height = take_int(request, "height", options.height, render::kMinImageSize, render::kMaxImageSize, false);
+  options.width = take_int(request, "width", options.width, false);
+  options.height = take_int(request, "height", options.height, false);
   options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
   options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
   // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
-  const int upto = take_int(request, "upto", -1, 0, INT_MAX, false);
+  const int upto = take_int(request, "upto", -1, false);
   const auto draw = [&](std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start) {
     if (upto >= static_cast<int>(frames.size())) {
       throw ApiError(422, "unprocessable", "upto", "upto must be below the number of frames (" +
@@ -185,11 +246,15 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
                                           const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
   render::HeatmapOptions options;
-  options.width = take_int(request, "width", 0, render::kMinImageSize, render::kMaxImageSize, true);
-  options.height = take_int(request, "height", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  options.width = take_int(request, "width", 0, true);
+  options.height = take_int(request, "height", 0, true);
   if (const std::string metric = take_string(request, "metric"); !metric.empty()) {
     auto parsed = render::heatmap_metric_from_string(metric);
-    if (!parsed) throw FieldError("invalid_field", "metric", "metric must be one of iterations, rate, residual");
+    if (!parsed) {
+      std::string names;
+      for (const std::string& name : picture("metric").values) names += (names.empty() ? "" : ", ") + name;
+      throw FieldError("invalid_field", "metric", "metric must be one of " + names);
+    }
     options.metric = *parsed;
   }
   if (request.contains("sweep")) {
@@ -218,8 +283,8 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
 std::vector<unsigned char> render_basins(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
-  const int width = take_int(request, "width", 0, render::kMinImageSize, render::kMaxImageSize, true);
-  const int height = take_int(request, "height", 0, render::kMinImageSize, render::kMaxImageSize, true);
+  const int width = take_int(request, "width", 0, true);
+  const int height = take_int(request, "height", 0, true);
   BasinRequest r = basin_request_from_json(request, limits);
   validate(r);
   before_work(hooks);
@@ -244,8 +309,8 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
                                                  const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
-  const int width = take_int(request, "width", 960, render::kMinImageSize, render::kMaxImageSize, false);
-  const int height = take_int(request, "height", 640, render::kMinImageSize, render::kMaxImageSize, false);
+  const int width = take_int(request, "width", kWorkPrecisionFigure.width, false);
+  const int height = take_int(request, "height", kWorkPrecisionFigure.height, false);
   WorkPrecisionRequest r = work_precision_request_from_json(request, limits);
   validate(r);
   before_work(hooks);
@@ -263,8 +328,8 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
 std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
                                             const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
-  const int width = take_int(request, "width", 1200, render::kMinImageSize, render::kMaxImageSize, false);
-  const int height = take_int(request, "height", 520, render::kMinImageSize, render::kMaxImageSize, false);
+  const int width = take_int(request, "width", kResidualsFigure.width, false);
+  const int height = take_int(request, "height", kResidualsFigure.height, false);
   const std::vector<Method> methods = take_enum_list(request, "methods", method_from_string, kAllMethods);
   const std::vector<Differential> differentials =
       take_enum_list(request, "differentials", differential_from_string, kAllDifferentials);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fields.hpp"
 #include "server/json_codec.hpp"
 
 namespace lienewton::render { class Renderer; }
@@ -33,13 +34,25 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
 // Basin map: a BasinRequest plus width/height (0 or absent: automatic); one panel per method.
 std::vector<unsigned char> render_basins(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks);
-// Work-precision diagram: a WorkPrecisionRequest plus width/height (default 960 x 640).
+// A figure's size when the request gives none.
+struct FigureSize {
+  int width;
+  int height;
+};
+inline constexpr FigureSize kWorkPrecisionFigure{960, 640};
+inline constexpr FigureSize kResidualsFigure{1200, 520};
+
+// Work-precision diagram: a WorkPrecisionRequest plus width/height (default kWorkPrecisionFigure).
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
                                                  const RenderHooks& hooks);
 // Residuals against solver CPU time and iteration: a SolveRequest without method/differential, plus
-// methods/differentials lists (default: all; fixed point once) and width/height (default 1200 x 520).
+// methods/differentials lists (default: all; fixed point once) and width/height (default kResidualsFigure).
 std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
                                             const RenderHooks& hooks);
+
+// The picture options of the render routes, rows of the request contract (core/fields.hpp) like the fields of
+// the requests they draw: each render route takes these rows plus its base request's.
+const std::vector<fields::Field>& picture_fields();
 
 // Any of the above.
 using RenderRequestFn = std::vector<unsigned char> (*)(json, const Limits&, render::Renderer&, const RenderHooks&);

@@ -17,7 +17,7 @@
 // and what the requests need of it: element(m) and matrix(y) convert between a request's matrix (rows) and an
 // Element; random(seed), the seeded start; not_an_element(m, name) and not_reachable(y0, z), why a request's
 // z or y0 is refused (empty: accepted), in the group's words; component_identity(z), the identity of z's
-// component (where continuation starts from the stiff end); kAlgebraDimension, dim() as a formula in N.
+// component (where continuation starts from the stiff end); kAlgebraDimension, dim() as a formula in n.
 // Adding a group: see docs/architecture.md ("Where a change goes").
 #include <Eigen/Core>
 #include <concepts>

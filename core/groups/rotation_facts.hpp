@@ -18,7 +18,7 @@ struct RotationFacts {
   static constexpr double kLogRadius = std::numbers::pi;  // log is defined for rotation angles below pi
   static constexpr const char* kAngleName = "rotation angle";
   static constexpr const char* kLogBoundaryName = "pi";
-  static constexpr const char* kAlgebraDimension = "N(N-1)/2";
+  static constexpr const char* kAlgebraDimension = "n(n-1)/2";
   // ||m^T m - I||_F above which a request's z or y0 is refused.
   static constexpr double kMemberTolerance = 1e-10;
 

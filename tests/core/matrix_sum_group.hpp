@@ -25,7 +25,7 @@ struct MatrixSumGroup {
   static constexpr double kLogMargin = 0.0;
   static constexpr const char* kAngleName = "angle";  // always 0: nothing wraps
   static constexpr const char* kLogBoundaryName = "infinity";
-  static constexpr const char* kAlgebraDimension = "N^2";
+  static constexpr const char* kAlgebraDimension = "n^2";
 
   explicit MatrixSumGroup(int n) : n_(n) {}
   int n() const { return n_; }

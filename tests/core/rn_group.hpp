@@ -20,7 +20,7 @@ struct RnGroup {
   static constexpr double kLogMargin = 0.0;
   static constexpr const char* kAngleName = "angle";  // always 0: nothing wraps
   static constexpr const char* kLogBoundaryName = "infinity";
-  static constexpr const char* kAlgebraDimension = "N";
+  static constexpr const char* kAlgebraDimension = "n";
 
   explicit RnGroup(int n) : n_(n) {}
   int n() const { return n_; }

@@ -63,7 +63,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::multimap<std::string, std::string> params;
     for (const auto& [key, value] : body.items()) params.emplace(key, value.is_string() ? value.get<std::string>() : dump(value));
     guarded([&] { solve_request_from_json(query_to_json(params), limits); });
-    guarded([&] { sweep_request_from_json(query_to_json(params, {"methods", "n", "h"}), limits); });
+    guarded([&] { sweep_request_from_json(query_to_json(params, list_fields(fields::sweep)), limits); });
   }
   return 0;
 }

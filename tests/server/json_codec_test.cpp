@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 
+#include "core/fields.hpp"
 #include "server/query_params.hpp"
 
 namespace lienewton::service {
@@ -327,6 +329,48 @@ TEST(QueryParams, MirrorJsonFields) {
   EXPECT_EQ(failure_of([&] { query_to_json(twice); }).code, "duplicate_field");
   const std::multimap<std::string, std::string> broken{{"z", "[[1,0"}};
   EXPECT_EQ(failure_of([&] { query_to_json(broken); }).field, "z");
+}
+
+}  // namespace
+}  // namespace lienewton::service
+
+namespace lienewton::service {
+namespace {
+
+// The group is a field of every request that takes a problem: read by name ("SO" when absent); whether the name
+// is registered is the core's question (422), its type the codec's.
+TEST(JsonCodec, GroupIsReadByEveryRouteThatTakesAProblem) {
+  const Limits limits;
+  EXPECT_EQ(solve_request_from_json(parse_body("{}"), limits).problem.group, "SO");
+  EXPECT_EQ(solve_request_from_json(parse_body(R"({"group":"SO"})"), limits).problem.group, "SO");
+  EXPECT_EQ(sweep_request_from_json(parse_body(R"({"group":"SO","n":[2],"h":[0.5]})"), limits).problem.group, "SO");
+  EXPECT_EQ(integrate_request_from_json(parse_body(R"({"group":"SO"})"), limits).problem.group, "SO");
+  EXPECT_EQ(work_precision_request_from_json(parse_body(R"({"group":"SO"})"), limits).problem.group, "SO");
+  EXPECT_EQ(basin_request_from_json(parse_body(R"({"group":"SO"})"), limits).solve.problem.group, "SO");
+  const Failure f = solve_failure(R"({"group":3})");
+  EXPECT_EQ(f.code, "invalid_field");
+  EXPECT_EQ(f.field, "group");
+}
+
+// Every row of the field table is a field its routes take (null counts as absent) and no other route's.
+TEST(JsonCodec, EachRouteTakesTheRowsOfItsRoutes) {
+  const Limits limits;
+  const std::pair<fields::Route, std::function<void(const json&)>> routes[] = {
+      {fields::solve, [&](const json& b) { solve_request_from_json(b, limits); }},
+      {fields::sweep, [&](const json& b) { sweep_request_from_json(b, limits); }},
+      {fields::basins, [&](const json& b) { basin_request_from_json(b, limits); }},
+      {fields::integrate, [&](const json& b) { integrate_request_from_json(b, limits); }},
+      {fields::work_precision, [&](const json& b) { work_precision_request_from_json(b, limits); }}};
+  for (const auto& [route, read] : routes) {
+    for (const fields::Field& row : fields::request_fields()) {
+      const json body{{row.name, nullptr}};
+      if (fields::find(route, row.name)) {
+        EXPECT_NO_THROW(read(body)) << row.name;
+      } else {
+        EXPECT_EQ(failure_of([&] { read(body); }).code, "unknown_field") << row.name;
+      }
+    }
+  }
 }
 
 }  // namespace

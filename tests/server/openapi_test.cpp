@@ -5,11 +5,14 @@
 #include <set>
 
 #include "core/fields.hpp"
+#include "core/solvers/newton_step.hpp"
+#include "core/solvers/watchdog.hpp"
 #include "core/status.hpp"
 #include "core/validation.hpp"
 #include "render/colormap.hpp"
 #include "render/series_style.hpp"
 #include "server/json_codec.hpp"
+#include "server/render_requests.hpp"
 #include "server/routes.hpp"
 #include "test_server.hpp"
 
@@ -114,6 +117,52 @@ TEST(OpenApi, FieldTableBoundsAreTheSchemaTheCodecAndTheCore) {
   }
   EXPECT_EQ(fields::h.message("h"), "h must be a finite number in (0, 1e6]");
   EXPECT_EQ(fields::tol.range_text(), "[1e-16, 1]");
+}
+
+// The request contract is written once: a request schema lists exactly the rows of the field table its route
+// takes, a render schema its picture options.
+TEST(OpenApi, RequestSchemasAreTheFieldTable) {
+  const json doc = json::parse(openapi_document());
+  const json& schemas = doc["components"]["schemas"];
+  const std::pair<const char*, fields::Route> requests[] = {
+      {"SolveRequest", fields::solve}, {"SweepRequest", fields::sweep}, {"BasinRequest", fields::basins},
+      {"IntegrateRequest", fields::integrate}, {"WorkPrecisionRequest", fields::work_precision}};
+  for (const auto& [name, route] : requests) {
+    std::set<std::string> listed, rows;
+    for (const auto& [key, _] : schemas[name]["properties"].items()) listed.insert(key);
+    for (const fields::Field* row : fields::fields_of(route)) rows.insert(row->name);
+    EXPECT_EQ(listed, rows) << name;
+    EXPECT_EQ(schemas[name]["properties"]["group"]["default"], "SO") << name;
+  }
+  const std::pair<const char*, fields::Route> renders[] = {
+      {"RenderFramesRequest", fields::render_frames}, {"RenderHeatmapRequest", fields::render_heatmap},
+      {"RenderBasinsRequest", fields::render_basins}, {"RenderWorkPrecisionRequest", fields::render_work_precision},
+      {"RenderResidualsRequest", fields::render_residuals}};
+  for (const auto& [name, route] : renders) {
+    std::set<std::string> listed, rows;
+    for (const auto& [key, _] : schemas[name]["properties"].items()) listed.insert(key);
+    for (const fields::Field& row : picture_fields())
+      if (row.takes(route)) rows.insert(row.name);
+    EXPECT_EQ(listed, rows) << name;
+  }
+}
+
+// Descriptions are built from the code's constants, never typed again.
+TEST(OpenApi, DescriptionsReadTheConstants) {
+  const json doc = json::parse(openapi_document());
+  const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
+  const auto has = [](const json& text, const std::string& part) {
+    return text.get<std::string>().find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(has(solve["watchdog"]["description"], "up to " + std::to_string(kWatchdogSteps) + " full steps"));
+  EXPECT_TRUE(has(solve["watchdog"]["description"], "at most " + std::to_string(kWatchdogEpisodes) + " such"));
+  const std::string threshold = "N = " + std::to_string(kKrylovThreshold) + ",";
+  EXPECT_TRUE(has(solve["linear_solver"]["description"], threshold));
+  for (const auto& entry : doc["x-lienewton"]["enums"]["linear_solver"]) {
+    if (entry["value"] == "auto") {
+      EXPECT_TRUE(has(entry["description"], threshold));
+    }
+  }
 }
 
 std::string css(render::Color c) {

@@ -6,13 +6,14 @@ import { postImage, stream } from '../shared/api.js';
 import { catalog } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { imageWidth } from '../shared/image_width.js';
-import { actions, checkboxes, number, select } from '../shared/fields.js';
+import { actions, checkboxes, contractNumber, select, spec } from '../shared/fields.js';
 import { checkedValues, runner, value } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, STATUSES, fmtExp, label } from '../shared/labels.js';
 import { DEFAULTS, problemFields } from '../shared/request.js';
 import { statusBadge } from '../shared/summary.js';
 
 const MIN_PANEL = 200;  // pixels per method's panel in the server PNG, with room for its title
+const MAX_SIZE = spec('BasinRequest', 'size').maximum;
 
 const ROOTS = catalog.colors.basin_roots;
 const DARKEST = catalog.colors.basin_darkest;
@@ -22,11 +23,12 @@ export function createBasinsPanel(root, { openSolve }) {
     problemFields({ ...DEFAULTS, h: 4 }),
     checkboxes('methods', 'Methods', METHODS, METHODS.map(([m]) => m), ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'exact'),
-    number('size', 'Pixels per side', 96, 'The grid is size \u00d7 size starts (at most 512)'),
-    number('r', 'Half-width r of the square', Number(Math.PI.toFixed(6)), 'a, b in [\u2212r, r]; default \u03c0'),
-    number('tol', 'Tolerance on \u2016f(y)\u2016', DEFAULTS.tol),
-    number('max_iterations', 'Max iterations', DEFAULTS.max_iterations),
-    number('seed', 'Seed of z', DEFAULTS.seed),
+    contractNumber('BasinRequest', 'size', 'Pixels per side', { value: 96, hint: 'The grid is size \u00d7 size starts' }),
+    contractNumber('BasinRequest', 'r', 'Half-width r of the square',
+      { value: Number(spec('BasinRequest', 'r').default.toFixed(6)), hint: 'a, b in [\u2212r, r]; default \u03c0' }),
+    contractNumber('BasinRequest', 'tol', 'Tolerance on \u2016f(y)\u2016'),
+    contractNumber('BasinRequest', 'max_iterations', 'Max iterations'),
+    contractNumber('BasinRequest', 'seed', 'Seed of z'),
     actions());
   const live = el('p', { class: 'live', role: 'status' },
     'Press Run to map from which starts y\u2080 = z exp(a B\u2081 + b B\u2082) each method converges.');
@@ -173,7 +175,7 @@ export function createBasinsPanel(root, { openSolve }) {
         methods: checkedValues(form, 'methods'), differential: value(form, 'differential'), size: value(form, 'size'),
         r: value(form, 'r'), tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
         seed: value(form, 'seed') };
-      const size = Number.isInteger(request.size) && request.size > 0 && request.size <= 512 ? request.size : 1;
+      const size = Number.isInteger(request.size) && request.size > 0 && request.size <= MAX_SIZE ? request.size : 1;
       const panels = request.methods.map((m, i) => makePanel(m, i, size));
       maps.replaceChildren(...panels.map((p) => p.figure));
       image.hidden = true;

@@ -3,7 +3,7 @@
 import { stream } from '../shared/api.js';
 import { residualChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, field, number, select } from '../shared/fields.js';
+import { actions, contractNumber, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { frameStepper } from '../shared/frame_stepper.js';
 import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
@@ -18,7 +18,7 @@ export function createSolvePanel(root) {
       'Ignored by the fixed-point method'),
     select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'Newton methods only'),
     select('continuation', 'Continuation in h', CONTINUATION, 'false', 'On: every stage streams, the last is at h'),
-    number('restarts', 'Restarts', 0, 'With continuation: seeded starts tried last, 0 to 10000'),
+    contractNumber('SolveRequest', 'restarts', 'Restarts', { hint: 'With continuation: seeded starts tried last' }),
     limitFields(),
     field('y0', 'Start guess y\u2080 (JSON rows; empty: y\u2080 = z)', el('textarea', { name: 'y0', rows: 3,
       spellcheck: 'false', autocomplete: 'off' }), 'Filled when a basin map pixel is opened here'),

@@ -3,7 +3,7 @@
 import { ApiError, postJSON } from '../shared/api.js';
 import { energyChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, choiceMatrix, number, range, select } from '../shared/fields.js';
+import { actions, choiceMatrix, contractNumber, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { runFrames } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
@@ -40,13 +40,13 @@ function describe(row, differential) {
 export function createSpeedPanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Work-precision request' },
     select('problem', 'Problem', PROBLEMS, 'rigid-body'),
-    number('n', 'Dimension N', 3),
-    number('t_end', 'End time t_end', 1),
+    contractNumber('WorkPrecisionRequest', 'n', 'Dimension N'),
+    contractNumber('WorkPrecisionRequest', 't_end', 'End time t_end'),
     range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2\u1d4f for each whole k'),
     number('energy_h', 'Step size h of the energy plot', 0.0625, 'Rigid body only'),
-    number('tol', 'Tolerance', 1e-13),
-    number('max_iterations', 'Max iterations', 100),
-    number('seed', 'Seed', 1),
+    contractNumber('WorkPrecisionRequest', 'tol', 'Tolerance'),
+    contractNumber('WorkPrecisionRequest', 'max_iterations', 'Max iterations'),
+    contractNumber('WorkPrecisionRequest', 'seed', 'Seed'),
     actions());
   form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS_SHORT, DEFAULT_TICKS,
     describe, ['integrator', 'method', 'differential']), form.querySelector('.field[data-field="h"]'));

@@ -4,7 +4,7 @@
 import { ApiError, postImage, stream } from '../shared/api.js';
 import { el } from '../shared/dom.js';
 import { imageWidth, onWidthChange } from '../shared/image_width.js';
-import { actions, checkboxes, number, range, select } from '../shared/fields.js';
+import { actions, checkboxes, contractNumber, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, METRICS, PROBLEMS, STATUSES, fmtExp, fmtH, fmtRate, label, mathText } from '../shared/labels.js';
 import { NO_VALUE, isOutlier, metricScale, metricValue, rampCss } from '../shared/colormap.js';
@@ -22,12 +22,12 @@ export function createStabilityPanel(root, { openSolve }) {
     select('differential', 'Differential', DIFFERENTIALS, 'finite-difference'),
     select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'The paper: none'),
     select('continuation', 'Continuation in h', CONTINUATION, 'false', 'The paper: off'),
-    number('restarts', 'Restarts', 0, 'With continuation: seeded starts tried last, 0 to 10000'),
+    contractNumber('SweepRequest', 'restarts', 'Restarts', { hint: 'With continuation: seeded starts tried last' }),
     range('n', 'Dimension N', ['n_lo', 2], ['n_hi', 15], 'The paper: 2 to 15'),
     range('h', 'log\u2082 h', ['k_lo', -10], ['k_hi', 10], 'h = 2\u1d4f; the paper: \u221210 to 10'),
-    number('tol', 'Tolerance', 1e-13),
-    number('max_iterations', 'Max iterations', 100),
-    number('seed', 'Seed', 1),
+    contractNumber('SweepRequest', 'tol', 'Tolerance'),
+    contractNumber('SweepRequest', 'max_iterations', 'Max iterations'),
+    contractNumber('SweepRequest', 'seed', 'Seed'),
     select('metric', 'Colour converged cells by', METRICS, 'iterations'),
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to sweep the grid (the paper\u2019s Figure 5.1).');

@@ -5,7 +5,10 @@
 // Nothing here is copied from the server, so a new method or status shows up with its own words.
 const response = await fetch('/openapi.json');
 if (!response.ok) throw new Error(`/openapi.json answered HTTP ${response.status}`);
-export const catalog = (await response.json())['x-lienewton'];
+const openapi = await response.json();
+export const catalog = openapi['x-lienewton'];
+// The request schemas (SolveRequest, ...): each field's type, bounds, default and description.
+export const schemas = openapi.components.schemas;
 
 // The entries of one enum, in the server's order: {value, label, short, description, explanation?, ...}.
 export function entries(name) {

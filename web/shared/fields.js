@@ -1,5 +1,6 @@
 // Builders for the form fields the panels share. Every field is wrapped in .field[data-field=<API name>]
 // with an error slot, so a server error naming that field lands right under it.
+import { schemas } from './catalog.js';
 import { el, uid } from './dom.js';
 import { EXPLAINED, explainer, explainerList } from './explain.js';
 import { fillSelect } from './form.js';
@@ -29,6 +30,31 @@ export function number(name, labelText, value, hint) {
   const input = el('input', { name, type: 'text', inputmode: 'decimal', value: String(value),
     autocomplete: 'off', spellcheck: 'false', dataset: { type: 'number' } });
   return field(name, labelText, input, hint);
+}
+
+// A field of a request schema as /openapi.json states it: type, bounds, enum, default and description (an
+// array's element bounds, with the array's description).
+export function spec(schema, name) {
+  const p = schemas[schema]?.properties?.[name];
+  if (!p) throw new Error(`/openapi.json describes no ${schema}.${name}`);
+  return p.type === 'array' ? { ...p.items, description: p.description } : p;
+}
+
+// A field's bounds as a hint: "0 to 10000", "over 0, up to 100", "at most 512", "at least 1".
+export function rangeText(p) {
+  const lo = p.minimum === undefined ? '' : `${p.exclusiveMinimum ? 'over' : 'at least'} ${p.minimum}`;
+  if (p.maximum === undefined) return lo;
+  if (!lo) return `at most ${p.maximum}`;
+  return p.exclusiveMinimum ? `${lo}, up to ${p.maximum}` : `${p.minimum} to ${p.maximum}`;
+}
+
+// A number box for a field of the request contract: the schema's default unless value is given, the schema's
+// bounds after the hint, the schema's description as the box's title.
+export function contractNumber(schema, name, labelText, { value, hint } = {}) {
+  const p = spec(schema, name);
+  const wrapper = number(name, labelText, value ?? p.default, [hint, rangeText(p)].filter(Boolean).join(', '));
+  wrapper.querySelector('input').title = p.description ?? '';
+  return wrapper;
 }
 
 // h with a log2 slider (2^-10 .. 2^10) bound to a numeric box; the box is what gets sent.

@@ -1,10 +1,11 @@
 // The fields every solve-like request has, built and read the same way in every panel.
-import { number, select, stepSize } from './fields.js';
+import { contractNumber, number, select, spec, stepSize } from './fields.js';
 import { value } from './form.js';
 import { PROBLEMS } from './labels.js';
 
-export const DEFAULTS = { problem: 'paper-linear', n: 3, h: 0.5, method: 'newton-group', differential: 'exact',
-  tol: 1e-13, max_iterations: 100, seed: 1 };
+// n, tol, max_iterations and seed as the server defaults them; the rest are the dashboard's choice.
+export const DEFAULTS = { problem: 'paper-linear', h: 0.5, method: 'newton-group', differential: 'exact',
+  ...Object.fromEntries(['n', 'tol', 'max_iterations', 'seed'].map((name) => [name, spec('SolveRequest', name).default])) };
 
 export function problemFields(d = DEFAULTS) {
   return [
@@ -16,9 +17,9 @@ export function problemFields(d = DEFAULTS) {
 
 export function limitFields(d = DEFAULTS) {
   return [
-    number('tol', 'Tolerance on \u2016f(y)\u2016', d.tol),
-    number('max_iterations', 'Max iterations', d.max_iterations),
-    number('seed', 'Seed of the random start point', d.seed),
+    contractNumber('SolveRequest', 'tol', 'Tolerance on \u2016f(y)\u2016', { value: d.tol }),
+    contractNumber('SolveRequest', 'max_iterations', 'Max iterations', { value: d.max_iterations }),
+    contractNumber('SolveRequest', 'seed', 'Seed of the random start point', { value: d.seed }),
   ];
 }
 
