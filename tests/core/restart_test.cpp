@@ -64,7 +64,7 @@ struct Scripted {
     opt.watchdog = true;
     opt.max_iterations = 100;
     opt.restarts = restarts;
-    return search.run(opt, [&](const Equation<SONGroup>& e) -> std::optional<Eigen::MatrixXd> {
+    return search.run(opt, [&](const Equation<SONGroup>& e, const SolverOptions&) -> ScriptedSearch::Root {
       if (e.h() == 32.0 && (e.start() - winner).norm() < 1e-12) return e.start();
       return std::nullopt;
     });

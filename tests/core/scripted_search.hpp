@@ -17,9 +17,10 @@
 namespace lienewton {
 
 struct ScriptedSearch {
-  // The root a stage reaches from its equation's start at its h, or nothing: the stage then fails with
-  // max_iterations at its start.
-  using Script = std::function<std::optional<Eigen::MatrixXd>(const Equation<SONGroup>&)>;
+  // The root a stage reaches from its equation's start at its h with its options, or nothing: the stage then fails
+  // with max_iterations at its start.
+  using Root = std::optional<Eigen::MatrixXd>;
+  using Script = std::function<Root(const Equation<SONGroup>&, const SolverOptions&)>;
 
   explicit ScriptedSearch(double h) : eq(Equation<SONGroup>::implicit_euler(g, z, h, *field)) {}
 
@@ -37,7 +38,7 @@ struct ScriptedSearch {
       r.y = e.start();
       r.iterations = o.max_iterations;
       r.status = Status::max_iterations;
-      if (const auto root = script(e)) {
+      if (const auto root = script(e, o)) {
         r.y = *root;
         r.status = Status::converged;
         r.iterations = 7;
