@@ -733,7 +733,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
          {"residual", finite_or_null(t.residual)},
          {"step", finite_or_null(t.step)},
          {"angle", finite_or_null(t.angle)},
-         {"distance_to_pi", finite_or_null(t.distance_to_pi())},
+         {"distance_to_pi", finite_or_null(t.log_boundary_distance)},
          {"orthogonality_error", finite_or_null(t.orthogonality_error)},
          {"seconds", finite_or_null(t.seconds)},
          {"cpu_seconds", finite_or_null(t.cpu_seconds)}};
