@@ -1,4 +1,4 @@
-// Basin maps (issue 14): the issue's two sizes, and the baseline a user would write, in one run:
+// Basin maps : two sizes, and the baseline a user would write, in one run:
 //   Basins_SO3/256    256 x 256 starts x 3 methods on SO(3), paper-linear, h = 4, exact differential, all cores
 //                     (target: under 2 s on 2 cores)
 //   Basins_SO8/128    128 x 128 starts x 3 methods on SO(8), same problem (target: under 30 s on 2 cores)

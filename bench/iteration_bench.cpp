@@ -1,4 +1,4 @@
-// The cost of ONE iteration of each method with each differential (issue 15), N = 2..15 (the paper's range) and
+// The cost of ONE iteration of each method with each differential, N = 2..15 (the paper's range) and
 // 24, 32: run_method on the paper-linear implicit Euler equation (1.1) at h = 2^-2 from start_point(N, seed 1),
 // with tol = 0 so that no run stops at convergence but runs until max_iterations (8) or the stagnation rule; the
 // counter "per_iteration" is the run's time divided by its iterations (fixed by a check run before timing):

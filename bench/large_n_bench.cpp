@@ -1,4 +1,4 @@
-// Large N and the per-iteration scaling (issue 7, target 3), Newton Version 1 on paper-linear, h = 2^-2,
+// Large N and the per-iteration scaling, Newton Version 1 on paper-linear, h = 2^-2,
 // start point seed 1:
 //   LargeN_Solve/<lu|gmres>/N  a whole solve with the exact differential and a forced linear solver:
 //                              dense (assemble the q x q differential, LU) vs matrix-free GMRES, N = 32, 64

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI P = 1 vs P = 2 (issue 15) on the paper's full experiment: `lienewton figures DIFF` (paper-linear and
+# MPI P = 1 vs P = 2 on the paper's full experiment: `lienewton figures DIFF` (paper-linear and
 # paper-sine, 3 methods, N = 2..15, h = 2^-10..2^10: 1764 cells) under `mpirun -n 1` and `mpirun -n 2`, and the
 # plain process on all cores (threads) as the reference, interleaved REPEATS times so that all three meet the
 # same machine load. Prints each run's wall seconds, the medians and their ratios, and checks that every output

@@ -1,5 +1,5 @@
 #pragma once
-// Basin maps (issue 14): from which starting guesses does each method converge, and to which root?
+// Basin maps: from which starting guesses does each method converge, and to which root?
 // For the implicit Euler equation f(y) = log(z^-1 y) - h g(y) = 0 (3.6) with the request's z, the start of
 // every solve is moved over a plane of the group through z,
 //   y_0(a, b) = z exp(a B1 + b B2),   (a, b) in [-r, r]^2 on a size x size grid of pixel centres,

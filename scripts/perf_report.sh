@@ -48,7 +48,7 @@ if grep -q '"PerIteration/' "$OUT/bench.json"; then
   "$PLOT" "$OUT/bench.json" "$ROOT/docs/time_per_iteration.png" 16 | tee "$OUT/fit.txt"
 fi
 
-# The ratios of issue 7 from the medians, as Markdown (docs/performance.md quotes them).
+# The target ratios from the medians, as Markdown (docs/performance.md quotes them).
 python3 - "$OUT/bench.json" <<'PY' | tee "$OUT/summary.md"
 import json, sys
 doc = json.load(open(sys.argv[1]))

@@ -1,5 +1,5 @@
 #pragma once
-// Continuation in the step size (issue 14, section 3). The implicit Euler equation
+// Continuation in the step size. The implicit Euler equation
 //   f_h(y) = log(z^-1 y) - h g(y) = 0                                                     (3.6)
 // has the root y = z at h = 0, and its root moves continuously with h while h g(y) stays inside log's branch.
 // A continued solve tries, in this order, until one converges at the requested h:

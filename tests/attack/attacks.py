@@ -18,7 +18,7 @@ import threading
 import time
 import urllib.parse
 
-# Attacks that still fail, by the item of issue 12 that fixes them, and in which modes ("direct": the server
+# Attacks that still fail, by the hardening item that fixes them, and in which modes ("direct": the server
 # alone, "nginx": through deploy/nginx). They are skipped with a printed note; whoever fixes the item removes
 # the entry, so that the attack guards the fix from then on.
 KNOWN_FAILING = {

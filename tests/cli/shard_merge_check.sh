@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Shards (issue 15): a sweep run as 3 shards (in any order, one thread each) and joined by `lienewton merge` prints
+# Shards: a sweep run as 3 shards (in any order, one thread each) and joined by `lienewton merge` prints
 # the unsharded sweep's output byte for byte, apart from the top-level "seconds" (wall time, summed over the parts);
 # every part holds cells, the parts are disjoint; a missing or repeated shard is refused with exit status 2.
 # The same for a basin map run as 3 shards of rows (paper-linear h = 4: two roots, which two of the parts meet in

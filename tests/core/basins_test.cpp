@@ -1,4 +1,4 @@
-// Basin maps (issue 14, section 1): classification against known roots, the roots' truth checked by an
+// Basin maps: classification against known roots, the roots' truth checked by an
 // independent oracle, the same map for any thread count, caps, cancellation, and y0 on a solve.
 #include <gtest/gtest.h>
 
@@ -197,7 +197,7 @@ TEST(Basins, FarmGivesTheSameMapAsThreads) {
   EXPECT_TRUE(basins(req, {}, &worker).rows.empty());
 }
 
-// Shards (issue 15): three parts, each holding every third row with its own root numbering, merged in shuffled
+// Shards: three parts, each holding every third row with its own root numbering, merged in shuffled
 // order give the unsharded map: pixels, renumbered roots, new roots per row, summaries. A part holds exactly its
 // rows; a missing, repeated or foreign part is refused naming `shard`.
 TEST(Basins, ShardsMergeToTheUnshardedMap) {

@@ -82,7 +82,7 @@ TEST(FailureClasses, LeftLogDomainWhenTheSolutionIsAtPi) {
   expect_reason(r, Status::left_log_domain);
   EXPECT_NE(r.reason.find("iterate 1 has rotation angle 3.14159"), std::string::npos) << r.reason;
   // f is undefined at the iterate that reached pi, so the answer is the last iterate inside log's domain,
-  // y_0 = z, with its residual (issue 11: the result describes the y it returns); the trace ends before pi.
+  // y_0 = z, with its residual (the result describes the y it returns); the trace ends before pi.
   EXPECT_EQ(r.iterate, 0);
   EXPECT_LT((Eigen::Matrix3d(r.y) - z).norm(), 1e-15);
   EXPECT_EQ(r.residual, r.trace[0].residual);

@@ -1,4 +1,4 @@
-// Issue 11: every status and number a result reports is true of the y it returns. An independent oracle
+// Every status and number a result reports is true of the y it returns. An independent oracle
 // recomputes, from the returned y and the given z only, f(y) = log(z^T y) - h g(y) (3.6) with Eigen's
 // Schur-Parlett principal matrix logarithm (unsupported/MatrixFunctions, not the production log) and the (1.1)
 // defect ||y - z expm(h g(y))||_F with Eigen's Pade matrix exponential; g is written again here from the paper.

@@ -1,4 +1,4 @@
-// The integrators' predictor (issue 14, section 3): each stage's iteration starts at the explicit Lie-Euler value
+// The integrators' predictor: each stage's iteration starts at the explicit Lie-Euler value
 // Z_i exp(h a_ii g(Z_i)) instead of Z_i. It must save iterations and reach the same solution, checked against
 // the independent oracle (Eigen's matrix log and exp), and it must keep paper-sine N = 5 at h = 1/16 off the
 // distant root the paper's start reaches.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI (issue 15): `mpirun -n 3 lienewton sweep|basins|figures` prints the single-process output byte for byte,
+# MPI: `mpirun -n 3 lienewton sweep|basins|figures` prints the single-process output byte for byte,
 # apart from wall-clock seconds. Three ranks on two cores (--oversubscribe): rank 0 hands out items and computes,
 # two ranks compute. A rank that ran the command on its own would print a second copy, and a lost, repeated or
 # misfiled cell, row or root would change the output: each comparison fails then.

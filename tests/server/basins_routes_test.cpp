@@ -1,4 +1,4 @@
-// Basin maps over HTTP (issue 14, section 1): the plain answer, the NDJSON stream (grid, rows in order, summary),
+// Basin maps over HTTP: the plain answer, the NDJSON stream (grid, rows in order, summary),
 // caps and errors naming the field, byte-identical JSON for 1 and 2 threads, and the PNG.
 #include <gtest/gtest.h>
 
@@ -72,7 +72,7 @@ TEST_F(BasinRoutes, PlainAnswerHoldsGridRowsRootsAndSummary) {
   EXPECT_GE(map["roots"].size(), 2u);
 }
 
-// A shard (issue 15) answers its rows only (r % count == index, the full map's rows) and says which part it is.
+// A shard answers its rows only (r % count == index, the full map's rows) and says which part it is.
 TEST_F(BasinRoutes, ShardAnswersItsRowsAndSaysWhichPartItIs) {
   auto c = client();
   const json whole = json::parse(c.Post("/api/v1/basins", kMap, "application/json")->body);

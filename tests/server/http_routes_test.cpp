@@ -72,7 +72,7 @@ TEST_F(Routes, SolveAnswersTheDocumentedFormat) {
   EXPECT_EQ(form->status, 200);
 }
 
-// "stopping" reaches the solver (issue 11): the issue's case paper-linear, N = 5, h = 16, Version 2 with
+// "stopping" reaches the solver: the case paper-linear, N = 5, h = 16, Version 2 with
 // dexpinv-1, where v_n leaves log's principal branch, so ||f~(v_n)|| falls below tol = 0.5 while ||f(y_n)||
 // stays near 2 pi. Section 5's rule runs to the cap; the algebra-residual rule stops on ||f~||.
 TEST_F(Routes, StoppingSelectsVersion2sRule) {

@@ -176,7 +176,7 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(wp_failure(R"({"choices":[]})").field, "choices");
 }
 
-// Every request that runs solves takes the stopping rule (issue 11); a bad value is a 400/422 naming the field.
+// Every request that runs solves takes the stopping rule; a bad value is a 400/422 naming the field.
 TEST(JsonCodec, StoppingRuleOnEveryRequest) {
   const json algebra = parse_body(R"({"stopping":"algebra-residual"})");
   EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).solver.stopping, Stopping::residual);
