@@ -84,8 +84,8 @@ Continued continued_solve(SolveRequest req) {
 // What holds of any continued solve, whichever path rounding sends it along (on these cells tries fail by wandering
 // for 100 iterations, and another build's rounding converges on some and not others):
 //  - the answer is honest: its residual is the oracle's at the requested h for the returned y, and converged means
-//    ||f(y)|| <= tol there (the oracle rounds at ~1e-14 in its own log: tol + 1e-13) with h g(y) inside log's
-//    branch, from the last stage, at h;
+//    ||f(y)|| <= tol there (the oracle rounds at ~1e-14 in its own log and, like f, at the result's rounding floor:
+//    tol + 1e-13 + floor) with h g(y) inside log's branch, from the last stage, at h;
 //  - the stream holds every stage's records (iterations + 1 each), tagged with its h, and the stages add up;
 //  - the path starts with the solve at h from the given start, and every stage starts where the search says: a
 //    given stage at z, an identity stage at z's component identity (I, or diag(-1, 1, ..., 1) when det z < 0)
@@ -97,11 +97,11 @@ void expect_honest_path(const Continued& c) {
   const Eigen::MatrixXd z = c.req.problem.start();
   const Oracle o = oracle(c.req.problem.kind, h, z, r.y);
   if (std::isfinite(o.residual) && std::isfinite(r.residual)) {
-    EXPECT_NEAR(o.residual, r.residual, 1e-13 + 1e-8 * o.residual) << r.reason;
+    EXPECT_NEAR(o.residual, r.residual, 1e-13 + r.floor + 1e-8 * o.residual) << r.reason;
   }
   ASSERT_FALSE(r.continuation.empty());
   if (r.status == Status::converged) {
-    EXPECT_LE(o.residual, c.req.solver.tol + 1e-13) << r.reason;
+    EXPECT_LE(o.residual, c.req.solver.tol + 1e-13 + r.floor) << r.reason;
     EXPECT_LE(o.angle, std::numbers::pi + 1e-9);  // a root f of (3.6) sees: h g(y) inside log's branch
     EXPECT_EQ(r.continuation.back().h, h);
     EXPECT_EQ(r.continuation.back().status, Status::converged);

@@ -81,9 +81,10 @@ TEST(GlobalizedNewton, NoneIsThePaperIteration) {
   }
 }
 
-// Every converged result of the globalised methods is true of the y it returns, over a spread of (N, h).
+// Every converged result of the globalised methods is true of the y it returns, over a spread of (N, h). Which
+// cells at large h converge is rounding's to decide (22 to 25 of the 48 in three builds); the well-conditioned
+// ones, h = 1/4 at N <= 4 (2 to 4 iterations), converge under any, so the check is never vacuous.
 TEST(GlobalizedNewton, ConvergedMeansTheOracleResidualIsBelowTol) {
-  int converged = 0;
   for (Method m : {Method::newton_group, Method::newton_algebra})
     for (Globalization g : {Globalization::line_search, Globalization::trust_region})
       for (int n : {2, 4, 6})
@@ -91,12 +92,11 @@ TEST(GlobalizedNewton, ConvergedMeansTheOracleResidualIsBelowTol) {
           const SolveResult r = solve(paper_request(ProblemKind::paper_sine, n, h, m, Differential::exact, g));
           const Oracle o = oracle(ProblemKind::paper_sine, h, start_point(n, 1), r.y);
           EXPECT_NEAR(o.residual, r.residual, 1e-9 * (1.0 + o.residual)) << n << " " << h << " " << r.reason;
+          if (h == 0.25 && n <= 4) { EXPECT_EQ(r.status, Status::converged) << n << " " << h << " " << r.reason; }
           if (r.status != Status::converged) continue;
-          ++converged;
           // The oracle's log rounds differently: agreement to tol plus the result's own rounding floor.
           EXPECT_LE(o.residual, 1e-13 + r.floor) << n << " " << h << " " << r.reason;
         }
-  EXPECT_GE(converged, 16);
 }
 
 // f(y) = vee((y - y^T) / 2) + a on SO(3) is sin(theta) n + a for y = exp(theta n^): with ||a|| > 1 it has no

@@ -121,9 +121,9 @@ TEST(Restarts, NeedContinuation) {
 
 // paper-linear N = 11, h = 32 (line search, exact, seed 1) is one of the cells that every path misses (README);
 // the restarts reach a root there. The paths' tries before them are erratic (470 stages with -march=native, 486
-// in plain x86-64), but the restart that converges is not: restart 29 from its seeded start, in 11 iterations, in
-// both; another rounding that reaches a root sooner ends the search there. Converged is checked by Eigen's log and
-// exp, and the root lies in log's principal branch.
+// in plain x86-64, 465 with AVX2 and FMA), but the restart that converges is not: restart 29 from its seeded
+// start, in 11 iterations, in all three; another rounding that reaches a root sooner ends the search there.
+// Converged is checked by Eigen's log and exp, and the root lies in log's principal branch.
 TEST(Restarts, ReachARootThatEveryPathMisses) {
   SolveRequest req;
   req.problem.kind = ProblemKind::paper_linear;
@@ -135,7 +135,7 @@ TEST(Restarts, ReachARootThatEveryPathMisses) {
   const SolveResult r = solve(req);
   ASSERT_EQ(r.status, Status::converged) << r.reason;
   const Oracle o = oracle(req.problem.kind, req.h, req.problem.start(), r.y);
-  EXPECT_LE(o.residual, req.solver.tol + 1e-13);
+  EXPECT_LE(o.residual, req.solver.tol + 1e-13 + r.floor);  // the oracle rounds like f, at the floor
   EXPECT_LT(o.angle, std::numbers::pi);
   EXPECT_EQ(r.continuation.back().h, req.h);
   const bool restarted = std::any_of(r.continuation.begin(), r.continuation.end(),
