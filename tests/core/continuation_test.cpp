@@ -1,4 +1,4 @@
-// Continuation in h (issue 14, section 3; core/solvers/continuation.hpp): the path, its honesty against the
+// Continuation in h (core/solvers/continuation.hpp): the path, its honesty against the
 // independent oracle (Eigen's matrix log and exp), the identity with the plain solve at small h, and cancellation.
 #include <gtest/gtest.h>
 
