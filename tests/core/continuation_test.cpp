@@ -306,6 +306,17 @@ Eigen::MatrixXd scripted_root(const ScriptedSearch& s, const Equation<SONGroup>&
   return restart_start(s.g, e.start(), 0);
 }
 
+// A continued solve on the scripted search, where a stage finds a root exactly when finds_root(its start, its h).
+template <class FindsRoot>
+SolveResult run_continued(ScriptedSearch& s, FindsRoot finds_root) {
+  SolverOptions opt;
+  opt.continuation = true;
+  return s.run(opt, [&](const Equation<SONGroup>& e, const SolverOptions&) -> ScriptedSearch::Root {
+    if (finds_root(start_of(s, e.start()), e.h())) return scripted_root(s, e);
+    return std::nullopt;
+  });
+}
+
 // Why: the path from the stiff end (4. in continuation.hpp) is tried, in its order, when the tries from z find no
 // root, whatever the cell: scripted, J's solves find no root at h and 2h and one at 4h; every stage from a root
 // finds one. After the tries from z (at h, the path from 1/16 shrinking its first step kMaxFailedStages times, a
@@ -315,12 +326,8 @@ Eigen::MatrixXd scripted_root(const ScriptedSearch& s, const Equation<SONGroup>&
 TEST(Continuation, StiffEndStartsAtTheIdentityWhenThePathFromZeroFails) {
   constexpr double h = 32.0;
   ScriptedSearch s(h);
-  SolverOptions opt;
-  opt.continuation = true;
-  const SolveResult r = s.run(opt, [&](const Equation<SONGroup>& e, const SolverOptions&) -> ScriptedSearch::Root {
-    const StageStart from = start_of(s, e.start());
-    if (from == StageStart::root || (from == StageStart::identity && e.h() >= 4 * h)) return scripted_root(s, e);
-    return std::nullopt;
+  const SolveResult r = run_continued(s, [&](StageStart from, double at) {
+    return from == StageStart::root || (from == StageStart::identity && at >= 4 * h);
   });
   ASSERT_EQ(r.status, Status::converged) << r.reason;
   std::vector<std::string> want = {stage(h, StageStart::given)};
@@ -353,12 +360,8 @@ INSTANTIATE_TEST_SUITE_P(StiffEnd, ContinuedCell,
 TEST(Continuation, PathFromBelowGoesUpFromARootAtASmallerStep) {
   constexpr double h = 64.0;
   ScriptedSearch s(h);
-  SolverOptions opt;
-  opt.continuation = true;
-  const SolveResult r = s.run(opt, [&](const Equation<SONGroup>& e, const SolverOptions&) -> ScriptedSearch::Root {
-    const StageStart from = start_of(s, e.start());
-    if (from == StageStart::root || (from == StageStart::identity && e.h() <= h / 4)) return scripted_root(s, e);
-    return std::nullopt;
+  const SolveResult r = run_continued(s, [&](StageStart from, double at) {
+    return from == StageStart::root || (from == StageStart::identity && at <= h / 4);
   });
   ASSERT_EQ(r.status, Status::converged) << r.reason;
   const std::vector<std::string> stages = stages_of(r);
