@@ -19,17 +19,7 @@ using render::testing::decode_png;
 
 const std::string kMap = R"({"problem":"paper-linear","n":3,"h":4,"differential":"exact","size":12})";
 
-class BasinRoutes : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { server_ = new testing::TestServer(); }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
-  httplib::Client client() { return server_->client(); }
-  static testing::TestServer* server_;
-};
-testing::TestServer* BasinRoutes::server_ = nullptr;
+class BasinRoutes : public testing::SharedServerTest {};
 
 TEST_F(BasinRoutes, PlainAnswerHoldsGridRowsRootsAndSummary) {
   auto c = client();

@@ -16,15 +16,8 @@
 namespace lienewton::service {
 namespace {
 
-using testing::TestServer;
-
-class GroupRoutes : public ::testing::Test {
+class GroupRoutes : public testing::SharedServerTest {
  protected:
-  static void SetUpTestSuite() { server_ = new TestServer(); }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
   static json post(const std::string& path, const std::string& body, int status = 200) {
     auto res = server_->client().Post(path, body, "application/json");
     EXPECT_TRUE(res);
@@ -32,9 +25,7 @@ class GroupRoutes : public ::testing::Test {
     EXPECT_EQ(res->status, status) << res->body;
     return json::parse(res->body);
   }
-  static TestServer* server_;
 };
-TestServer* GroupRoutes::server_ = nullptr;
 
 Eigen::MatrixXd matrix(const json& rows) {
   Eigen::MatrixXd m(rows.size(), rows[0].size());

@@ -7,24 +7,13 @@
 namespace lienewton::service {
 namespace {
 
-using testing::TestServer;
 
 const std::string kSolve =
     R"({"problem":"paper-linear","n":3,"h":0.5,"method":"newton-group","differential":"exact","seed":1})";
 
 bool is_png(const std::string& body) { return body.size() > 8 && body.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0; }
 
-class Routes : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { server_ = new TestServer(); }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
-  httplib::Client client() { return server_->client(); }
-  static TestServer* server_;
-};
-TestServer* Routes::server_ = nullptr;
+class Routes : public testing::SharedServerTest {};
 
 TEST_F(Routes, HealthMetricsAndOpenApi) {
   auto c = client();

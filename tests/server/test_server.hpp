@@ -6,6 +6,8 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -91,6 +93,19 @@ inline std::string raw_http(int port, const std::string& request) {
   ::close(fd);
   return out;
 }
+
+// A fixture whose tests share one in-process server, started once per suite (a server per test would cost
+// a start and a drain each).
+class SharedServerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new TestServer(); }
+  static void TearDownTestSuite() {
+    delete server_;
+    server_ = nullptr;
+  }
+  static httplib::Client client() { return server_->client(); }
+  static inline TestServer* server_ = nullptr;
+};
 
 inline int raw_status(const std::string& response) {
   if (response.size() < 12) return -1;
