@@ -1,7 +1,8 @@
 # lienewton-server image. Build stage: Debian bookworm with the same dependency script as the README and CI
 # (scripts/deps.sh build), CMake Release build. Runtime stage: bookworm-slim with only the shared libraries
 # the binaries need (RUNTIME_LIBS, checked against ldd by scripts/check_runtime_libs.sh) and the font the
-# renderer reads (RUNTIME_DATA), the dashboard, a non-root user.
+# renderer reads (RUNTIME_DATA), nginx in front of the server under tini (RUNTIME_FRONT,
+# deploy/container/entrypoint.sh), the dashboard, a non-root user.
 #   docker build -t lienewton .
 #   docker run --rm -p 8080:8080 lienewton
 FROM debian:bookworm AS build
@@ -20,13 +21,21 @@ FROM debian:bookworm-slim AS runtime
 ARG RUNTIME_LIBS="libcpp-httplib0.11 libosmesa6 libpng16-16 libstb0"
 # Not visible to ldd: the TrueType font the heatmap labels are drawn with.
 ARG RUNTIME_DATA="fonts-dejavu-core"
-RUN apt-get update \
+# The supported deployment in one image: nginx in front of the server, tini as PID 1 (reaps, forwards signals).
+ARG RUNTIME_FRONT="nginx tini"
+# policy-rc.d: installing nginx must not start it as a service during the build.
+RUN printf '#!/bin/sh\nexit 101\n' >/usr/sbin/policy-rc.d && chmod 755 /usr/sbin/policy-rc.d \
+ && apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${RUNTIME_LIBS} ${RUNTIME_DATA} \
- && rm -rf /var/lib/apt/lists/* \
+      ${RUNTIME_FRONT} \
+ && rm -rf /var/lib/apt/lists/* /usr/sbin/policy-rc.d \
  && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin lienewton
 COPY --from=build /build/bin/lienewton /build/bin/lienewton-server /opt/lienewton/bin/
 COPY web /opt/lienewton/web
-# The healthcheck reads the same variables as the server, so it probes the address the server listens on.
+COPY deploy/container/entrypoint.sh /opt/lienewton/bin/
+COPY deploy/nginx/make_conf.sh deploy/nginx/lienewton.conf /opt/lienewton/nginx/
+# The healthcheck reads the same variables as the server, so it probes the address nginx listens on (the
+# entrypoint moves the server itself to 127.0.0.1:LIENEWTON_BACKEND_PORT behind it).
 ENV LIENEWTON_HOST=0.0.0.0 \
     LIENEWTON_PORT=8080 \
     LIENEWTON_WEB_ROOT=/opt/lienewton/web \
@@ -35,4 +44,5 @@ USER 10001:10001
 EXPOSE 8080
 HEALTHCHECK --interval=10s --timeout=3s --start-period=5s --retries=3 \
   CMD ["/opt/lienewton/bin/lienewton-server", "--healthcheck"]
-ENTRYPOINT ["/opt/lienewton/bin/lienewton-server", "--host", "0.0.0.0"]
+# Arguments after the image name go to lienewton-server. SIGTERM drains the server and nginx, then both exit.
+ENTRYPOINT ["/usr/bin/tini", "--", "/opt/lienewton/bin/entrypoint.sh"]

@@ -5,6 +5,7 @@
 //   SO3_NewtonIteration  one Newton Version 1 iteration on SO(3), to compare with the sum of its parts
 //   Solve_*         a whole SO(3) Newton Version 1 solve (h = 0.5, exact differential) on rigid-body and
 //                   paper-linear vs the same algorithm on the baseline with the finite-difference differential
+//   Solve_Search/*  paper-sine N = 5: the method alone, through run_method with continuation off, and continued
 //   Sweep_*         the paper's default sweep (paper-linear and paper-sine x 3 methods x N = 2..15 x
 //                   h = 2^-10..2^10): lienewton with finite-difference and with exact, vs the baseline on a
 //                   subset of h (extrapolated, see the label); "/short" is the reduced grid CI runs.
@@ -20,6 +21,7 @@
 #include "bench/alloc_count.hpp"
 #include "bench/eigen_baseline.hpp"
 #include "core/solvers/equation.hpp"
+#include "core/solvers/run_method.hpp"
 #include "core/groups/so3_group.hpp"
 #include "core/groups/son_group.hpp"
 #include "core/parallel_for.hpp"
@@ -283,6 +285,31 @@ void Solve_LienewtonFD(benchmark::State& state, ProblemKind problem) {
 }
 BENCHMARK_CAPTURE(Solve_LienewtonFD, rigid_body, ProblemKind::rigid_body)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(Solve_LienewtonFD, paper_linear, ProblemKind::paper_linear)->Unit(benchmark::kMicrosecond);
+
+// What continuation costs, and that it costs nothing when off: the same solve (paper-sine, N = 5, h = 1/4, Version 1,
+// exact) by the method alone (run_directly), through run_method with continuation off (must be the same time:
+// the ratio of the two in one run is the overhead of the searches' switch), and continued along z's branch.
+enum class Search { direct, off, continued };
+void Solve_Search(benchmark::State& state, Search search) {
+  const SONGroup group(5);
+  const auto field = make_field(group, ProblemKind::paper_sine, RigidBodyParams{});
+  const auto eq = Equation<SONGroup>::implicit_euler(group, start_point(5, 1), 0.25, *field);
+  SolverOptions opt;
+  opt.continuation = search == Search::continued;
+  const auto run = [&] {
+    return search == Search::direct ? run_directly(Method::newton_group, eq, opt, {})
+                                    : run_method(Method::newton_group, eq, opt, {});
+  };
+  const SolveResult check = run();
+  if (check.status != Status::converged) state.SkipWithError("paper-sine N = 5, h = 1/4 did not converge");
+  for (auto _ : state) benchmark::DoNotOptimize(run().residual);
+  state.counters["iterations"] = check.total_iterations();
+  state.counters["path_points"] = static_cast<double>(check.continuation.size());
+  state.SetLabel(search == Search::direct ? "method alone" : search == Search::off ? "continuation off" : "continued");
+}
+BENCHMARK_CAPTURE(Solve_Search, direct, Search::direct)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(Solve_Search, continuation_off, Search::off)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(Solve_Search, continued, Search::continued)->Unit(benchmark::kMicrosecond);
 
 // One Newton Version 1 iteration on SO(3) (exact differential), exactly as newton_group runs it: evaluate f
 // at y_n with the spectral form, assemble the 3x3 differential, LU-solve, y_{n+1} = y_n exp(u). Cycled over

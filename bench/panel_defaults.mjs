@@ -1,8 +1,9 @@
 // Click-to-complete time of every dashboard panel with its default form: from the click on Run until the run
 // has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (frames, heatmap,
-// basin PNG). Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
+// basin PNG); for the stability and basin maps also the plan's estimate made before Run. Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
 // the machine's load average before and after, since the machine is shared. With a screenshot directory it then
-// saves every panel, its defaults run, at 1440x900 and, run again, at 390x844 (docs/screenshots/ holds these).
+// saves every panel's first screen before and after its defaults run at 1440x900 and 390x844
+// (docs/screenshots/ holds these).
 //   node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions=3] [screenshot-dir]
 import { loadavg } from 'node:os';
 import { mkdirSync } from 'node:fs';
@@ -19,6 +20,15 @@ const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const load = () => loadavg().map((x) => x.toFixed(2)).join(' ');
 const PANELS = [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Basins', 'basins'],
   ['Speed vs accuracy', 'speed']];
+
+// The panels that plan before Run (stability map, basins): waits for the plan's estimate and returns it in
+// seconds (null for the other panels).
+async function planned(page, id) {
+  if (!['stability', 'basins'].includes(id)) return null;
+  const line = page.locator(`#${id} .live[data-estimate]`);
+  await line.waitFor({ state: 'attached', timeout: 60_000 });
+  return Number(await line.getAttribute('data-estimate'));
+}
 
 // Resolves to the ms from the click to a finished run with its pictures loaded; throws if the run failed.
 async function clickToComplete(page, id) {
@@ -47,25 +57,33 @@ console.log(`load average (1, 5, 15 min) before: ${load()}`);
 for (const [name, id] of PANELS) {
   await page.getByRole('tab', { name }).click();
   const times = [];
+  const estimate = await planned(page, id);
   for (let i = 0; i < Number(reps); i++) times.push(await clickToComplete(page, id));
   console.log(`${name}: median ${median(times).toFixed(0)} ms click to complete ` +
+    (estimate === null ? '' : `(the plan estimated ${(estimate * 1e3).toFixed(0)} ms) `) +
     `(runs: ${times.map((t) => t.toFixed(0)).join(', ')} ms), load average now ${load()}`);
 }
+// Each panel freshly opened at each size: its first screen before Run (Run must be on it) and after its defaults
+// ran (what the window shows then: on a phone the result, scrolled into view above the form).
 if (shots) {
   mkdirSync(shots, { recursive: true });
   for (const [w, h] of [[1440, 900], [390, 844]]) {
-    await page.setViewportSize({ width: w, height: h });
-    for (const [name, id] of PANELS) {
-      await page.getByRole('tab', { name }).click();
-      // At the phone size the panel runs again, so that its server PNGs are drawn as a phone asks for them.
-      if (w !== 1440) console.log(`${name} at ${w}x${h}: ${(await clickToComplete(page, id)).toFixed(0)} ms click to complete`);
-      await page.evaluate(() => window.scrollTo(0, 0));
-      // Charts and server PNGs follow the new width (PNGs after a 250 ms settle and a new request).
-      await page.waitForTimeout(900);
-      await page.waitForFunction((panel) => [...document.querySelectorAll(`#${panel} img[src]`)]
+    const fresh = await browser.newPage({ viewport: { width: w, height: h } });
+    for (const [, id] of PANELS) {
+      await fresh.goto('about:blank');
+      await fresh.goto(`${server.base}/#${id}`);
+      await fresh.locator('#server-state[data-ok="true"]').waitFor();
+      await planned(fresh, id);
+      await fresh.screenshot({ path: join(shots, `${id}-${w}x${h}-before.png`) });
+      console.log(`${id} at ${w}x${h}: ${(await clickToComplete(fresh, id)).toFixed(0)} ms click to complete`);
+      if (w === 1440) await fresh.evaluate(() => window.scrollTo(0, 0));
+      // Charts and server PNGs follow their final width (PNGs after a 250 ms settle and a new request).
+      await fresh.waitForTimeout(900);
+      await fresh.waitForFunction((panel) => [...document.querySelectorAll(`#${panel} img[src]`)]
         .filter((img) => img.offsetParent !== null).every((img) => img.complete && img.naturalWidth > 0), id);
-      await page.screenshot({ path: join(shots, `${id}-${w}x${h}.png`), fullPage: true });
+      await fresh.screenshot({ path: join(shots, `${id}-${w}x${h}.png`) });
     }
+    await fresh.close();
   }
 }
 await stopAll();

@@ -10,7 +10,7 @@
 #include "solve.hpp"
 #include "solvers/continuation.hpp"
 #include "solvers/newton_step.hpp"
-#include "solvers/restart_start.hpp"
+#include "solvers/multistart.hpp"
 #include "solvers/watchdog.hpp"
 #include "sweep.hpp"
 #include "validation.hpp"
@@ -43,6 +43,7 @@ std::string IntegerField::message(const std::string& path, long long cap) const 
 }
 
 std::string Field::number_message(const std::string& path) const {
+  if (!minimum || !maximum) return path + " must be a finite number";  // its bounds are core validation's (422)
   return NumberField{name.c_str(), *minimum, *maximum, exclusive_minimum, kNoDefault, ""}.message(path);
 }
 
@@ -62,6 +63,17 @@ Field number(const NumberField& f, Routes routes, std::vector<Member> lands) {
   Field row{.name = f.name, .type = Type::number, .routes = routes, .lands = std::move(lands),
             .description = f.description, .minimum = f.min, .maximum = f.max, .exclusive_minimum = f.min_exclusive};
   if (!std::isnan(f.default_value)) row.default_value = f.default_value;
+  return row;
+}
+
+// A tolerance of adaptive steps: the codec reads any finite number; (0, 1] is core validation's (422), published
+// as the schema's bounds.
+Field tolerance(const NumberField& f, Routes routes, std::vector<Member> lands) {
+  Field row = number(f, routes, std::move(lands));
+  row.schema_minimum = row.minimum;
+  row.schema_maximum = row.maximum;
+  row.minimum.reset();
+  row.maximum.reset();
   return row;
 }
 
@@ -96,8 +108,6 @@ Field array(Field item, std::size_t min_items, std::size_t max_items, std::strin
 std::string text(int x) { return std::to_string(x); }
 
 std::vector<Field> build() {
-  const std::string sixteenth = "1/" + text(static_cast<int>(std::lround(1 / kContinuationStart)));
-  const std::string stiff = text(1 << kStiffDoublings) + "h";
   const std::string method_text = "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2";
   const std::string differential_text = "how the Newton differential is formed";
   const Field shard_index{.name = "index", .type = Type::integer, .lands = {&Shard::index},
@@ -123,6 +133,24 @@ std::vector<Field> build() {
   Field momentum{.name = "momentum", .type = Type::number, .lands = {&RigidBodyParams::momentum},
                  .description = "spatial angular momentum"};
   momentum = array(momentum, 3, 3, "3 finite numbers");
+  // heavy-top's parameters: the codec reads finite numbers, core validation refuses the rest with 422 (the
+  // schema's bounds).
+  const auto top_vector = [](const char* name, Eigen::Vector3d HeavyTopParams::*member, const char* description,
+                             const Eigen::Vector3d& value, bool positive) {
+    Field f{.name = name, .type = Type::number, .lands = {member}, .description = description,
+            .exclusive_minimum = positive, .schema_minimum = positive ? 0.0 : -HeavyTopParams::kBound,
+            .schema_maximum = HeavyTopParams::kBound};
+    f = array(f, 3, 3, "3 finite numbers");
+    f.description += " (default [" + format_bound(value.x()) + ", " + format_bound(value.y()) + ", " +
+                     format_bound(value.z()) + "])";
+    return f;
+  };
+  const HeavyTopParams top;
+  Field top_mass{.name = "mass", .type = Type::number, .lands = {&HeavyTopParams::mass}, .description = "m",
+                 .exclusive_minimum = true, .schema_minimum = 0.0, .schema_maximum = HeavyTopParams::kBound,
+                 .default_value = top.mass};
+  Field top_rotation{.name = "rotation", .type = Type::matrix, .lands = {&HeavyTopParams::rotation},
+                     .description = "R(0), a 3 x 3 rotation (orthogonal to 1e-10, det +1; default the identity)"};
   Field seed{.name = "seed", .type = Type::integer, .routes = kProblemRoutes, .lands = {&ProblemSpec::seed},
              .description = "unsigned 64-bit seed of the random start point", .minimum = 0.0,
              .maximum = static_cast<double>(std::numeric_limits<std::uint64_t>::max()), .default_value = 1LL};
@@ -130,17 +158,35 @@ std::vector<Field> build() {
   basin_n.description = "matrix size N (at least 3: the plane needs two directions)";
   basin_n.default_value = {};
   basin_n.schema_minimum = 3;
-  Field restarts_row = integer(restarts, kProblemRoutes, {&SolverOptions::restarts});
-  restarts_row.schema_maximum = restarts_row.maximum;
-  restarts_row.description = std::string(restarts.description) + " (else 422), the search's last try: at most " +
-                             text(kRestartIterations) + " iterations each, the requested globalization, no "
-                             "watchdog, from y0 exp(x_k), k = 0, 1, ..., seeded by k alone, exp(x_k) turning by at "
-                             "most " + format_bound(kRestartAngle) + " rad; the first that converges ends the search";
+  Field multistart_row = integer(multistart, kProblemRoutes, {&SolverOptions::multistart});
+  multistart_row.schema_maximum = multistart_row.maximum;
+  multistart_row.description =
+      std::string(multistart.description) + " (by the plain solve or continuation): at most " +
+      text(kMultistartIterations) + " iterations each, the requested globalization, from y0 exp(x_k), k = 0, 1, "
+      "..., seeded by k alone, exp(x_k) turning by at most " + format_bound(kMultistartAngle) + " rad; the first "
+      "that ends at a root (converged or stagnated) ends the search. Its root is branch other when continuation "
+      "showed z's branch folds before h, else unchecked; found_by and multistart_start say where it came from";
 
   std::vector<Field> t;
   t.push_back(enumeration("problem", kAllProblems, kProblemRoutes, {&ProblemSpec::kind}, "test problem"));
+  t.push_back(Field{.name = "g", .type = Type::string, .routes = kProblemRoutes, .lands = {&ProblemSpec::g},
+                    .description = "your own field g(y) instead of problem (both: 422), in MATLAB notation: a program "
+                                   "over the n x n matrix y (and t: the stage time in integrate and work-precision, 0 elsewhere; pi; the parameters), statements separated by ; "
+                                   "or new lines, its value in g or the last expression, e.g. u = sin(y)*(2*y - "
+                                   "5*y^2); g = u - u'. Exact derivatives by forward-mode differentiation. Errors: "
+                                   "422 with line and column"});
+  t.push_back(Field{.name = "parameters", .type = Type::object, .routes = kProblemRoutes,
+                    .lands = {&ProblemSpec::parameters},
+                    .description = "with g: named numbers and matrices the program reads, e.g. {\"J\": [[1,0,0],"
+                                   "[0,2,0],[0,0,3]]} (a number, an array: a row, an array of rows: a matrix)"});
   t.push_back(Field{.name = "group", .type = Type::string, .routes = kProblemRoutes, .lands = {&ProblemSpec::group},
-                    .description = "the Lie group by its registered name; n is its index, as in SO(n)",
+                    .description = "the Lie group by its registered name; n is its index, as in SO(n). SO: SO(n), n x n "
+                                   "orthogonal z; SE: SE(3) (n = 3), z the 4 x 4 [[R, p], [0, 1]], algebra coordinates "
+                                   "(w, r), rotation vector first; SOxR: SO(3) x R^3 (n = 3), z the 7 x 7 block "
+                                   "diagonal [[R, 0], [0, [[I, w], [0, 1]]]], coordinates (rotation vector, w); SExR: "
+                                   "SE(3) x R^6 (n = 3), z the 11 x 11 [[T, 0], [0, [[I, v], [0, 1]]]], coordinates "
+                                   "(w, r, v). The built-in problems are defined on SO, heavy-top on SOxR; g (your own "
+                                   "field) on every group",
                     .values = registered_group_names(), .default_value = std::string("SO")});
   t.push_back(integer(n, solve | integrate | work_precision, {&ProblemSpec::n}, Cap::n));
   t.push_back(basin_n);
@@ -149,6 +195,21 @@ std::vector<Field> build() {
   t.push_back(Field{.name = "rigid_body", .type = Type::object, .routes = kProblemRoutes,
                     .lands = {&ProblemSpec::rigid_body}, .description = "rigid-body only: the body's parameters",
                     .schema = "RigidBody", .properties = {three, momentum}});
+  t.push_back(Field{.name = "heavy_top", .type = Type::object, .routes = kProblemRoutes,
+                    .lands = {&ProblemSpec::heavy_top},
+                    .description = "heavy-top only: the top's parameters and its start (R(0), omega(0)), which "
+                                   "replace z; absent ones keep their defaults",
+                    .schema = "HeavyTop",
+                    .properties = {top_mass,
+                                   top_vector("inertia", &HeavyTopParams::inertia, "J: principal moments (positive)",
+                                              top.inertia, true),
+                                   top_vector("center", &HeavyTopParams::center, "chi: the centre of mass in the body",
+                                              top.center, false),
+                                   top_vector("gravity", &HeavyTopParams::gravity, "gamma: gravity in space",
+                                              top.gravity, false),
+                                   top_rotation,
+                                   top_vector("omega", &HeavyTopParams::omega, "omega(0): body angular velocity",
+                                              top.omega, false)}});
   t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text));
   t.push_back(enumeration("differential", kAllDifferentials, solve | sweep | integrate | basins,
                           {&SolverOptions::differential}, differential_text));
@@ -171,21 +232,19 @@ std::vector<Field> build() {
       std::string("none")));
   t.push_back(boolean(
       "continuation", kProblemRoutes, &SolverOptions::continuation,
-      "first solve at h (with a globalization, then also the plain Newton at h); only when that fails, reach h "
-      "through h_0 < h_1 < ... < h (h_k = h 2^(k-K), h_0 <= " + sixteenth + "; a failed stage is retried at the "
-      "geometric mean of its h and the last reached one), each stage started at the previous root; failing that, "
-      "from the stiff end: solve from the identity of z's component at h, else at 2h, ..., " + stiff + " and halve "
-      "back to h from the root found; failing that, at h/2, h/4, ..., " + sixteenth + " from the request's start "
-      "and from that identity, and up to h from the first root found; failing that, the restarts (restarts). With "
-      "a globalization every stage that finds no root is solved again from the same start with full steps. The "
-      "result's continuation lists the stages, and only a solve at h decides the status"));
+      "the root continued from y = z at h = 0: pseudo-arclength continuation of the roots (v, h) of "
+      "v - h g(z exp v) = 0 from (0, 0) (tangent predictor, Newton corrector on the bordered system, step-length "
+      "control), ending with the method's solve at exactly h from the path's prediction; its root must be the one "
+      "nearest the prediction (contracting Newton steps). Where the branch turns back in h before the requested h "
+      "the answer is status fold with fold_h. The result's branch says which root y is, continuation lists the "
+      "path's points (streams send each as a record with path_point)"));
   t.push_back(boolean(
       "watchdog", kProblemRoutes, &SolverOptions::watchdog,
       "globalised Version 1 only: where the full Newton step does not decrease 1/2 ||f||^2 (it jumps at log's cut), "
       "take it anyway, up to " + text(kWatchdogSteps) + " full steps until one falls below the Armijo bound of the "
       "iterate it started from, else go back there and take the globalised step; at most " +
-      text(kWatchdogEpisodes) + " such episodes go back. Continuation's stages never use it"));
-  t.push_back(restarts_row);
+      text(kWatchdogEpisodes) + " such episodes go back. Continuation's solves never use it"));
+  t.push_back(multistart_row);
   t.push_back(boolean("include_iterates", solve, &SolverOptions::include_iterates,
                       "keep every iterate y_n in the trace (TraceRecord.y)"));
   t.push_back(number(h, solve | integrate | basins, {&SolveRequest::h, &IntegrateRequest::h}));
@@ -195,7 +254,12 @@ std::vector<Field> build() {
                                    "equation's z"});
   t.push_back(number(t_end, integrate | work_precision, {&IntegrateRequest::t_end, &WorkPrecisionRequest::t_end}));
   t.push_back(enumeration("integrator", kAllIntegrators, integrate, {&IntegrateRequest::integrator},
-                          "implicit Lie group integrator"));
+                          "Lie group integrator: implicit-euler, dirk-cg2/3 (Crouch-Grossman DIRK, stage by stage), "
+                          "rkmk-gauss1/2/3 and rkmk-radau2/3 (implicit RKMK, coupled stages in the algebra), rkmk4 "
+                          "(explicit)"));
+  t.push_back(tolerance(rtol, integrate, {&IntegrateRequest::rtol}));
+  t.push_back(tolerance(atol, integrate, {&IntegrateRequest::atol}));
+  t.push_back(integer(max_steps, integrate, {&IntegrateRequest::max_steps}));
   t.push_back(Field{.name = "frames", .type = Type::integer, .routes = integrate, .lands = {&IntegrateRequest::frames},
                     .description = "evenly spaced states to return", .minimum = 0.0, .cap = Cap::frames});
   t.push_back(enumeration("predictor", kAllPredictors, integrate | work_precision,
@@ -209,13 +273,14 @@ std::vector<Field> build() {
                           .description = "the (integrator, method, differential) runs, each at every h",
                           .schema = "WorkPrecisionChoice",
                           .properties = {enumeration("integrator", kAllIntegrators, 0, {&WorkPrecisionChoice::integrator},
-                                                     "implicit Lie group integrator"),
+                                                     "Lie group integrator (as integrate's integrator)"),
                                          enumeration("method", kAllMethods, 0, {&WorkPrecisionChoice::method}, method_text),
                                          enumeration("differential", kAllDifferentials, 0,
                                                      {&WorkPrecisionChoice::differential}, differential_text)}},
                     1, 64, "choice objects"));
   Field wp_h = number(h, work_precision, {&WorkPrecisionRequest::h});
   t.push_back(array(wp_h, 1, 64, "step sizes"));
+  t.push_back(array(tolerance(tolerances, work_precision, {&WorkPrecisionRequest::tolerances}), 1, 64, "tolerances"));
   t.push_back(array(enumeration("methods", kAllMethods, sweep, {&SweepRequest::methods}, method_text), 1, 16,
                     "method names"));
   t.push_back(array(integer(n, sweep, {&SweepRequest::n}, Cap::n), 1, 100000, "integers", Cap::grid_axis));

@@ -16,8 +16,10 @@
 #include <vector>
 
 #include "options.hpp"
+#include "heavy_top_params.hpp"
 #include "rigid_body_params.hpp"
 #include "shard.hpp"
+#include "user_field/program.hpp"
 
 namespace lienewton {
 struct ProblemSpec;
@@ -66,11 +68,24 @@ inline constexpr NumberField tol{"tol", 1e-16, 1.0, false, 1e-13, "absolute tole
 inline constexpr NumberField t_end{"t_end", 0.0, 100.0, true, 1.0, "end time"};
 inline constexpr IntegerField n{"n", 2, 100000, 3, "matrix size N (capped by --max-n)"};  // 1e5: beyond any memory
 inline constexpr IntegerField max_iterations{"max_iterations", 1, 100000, 100, "capped by --max-iterations"};
-inline constexpr IntegerField restarts{"restarts", 0, 10000, 0,
-                                      "continuation only: solves at h from seeded starts after its paths fail"};
+inline constexpr IntegerField multistart{"multistart", 0, 10000, 0,
+                                        "solves at h from seeded starts when no root was found before"};
+
+// The tolerances of adaptive steps: the codec reads any finite number, core validation refuses one outside
+// (0, 1] with 422 (validation::check_tolerance).
+inline constexpr NumberField rtol{"rtol", 0.0, 1.0, true, kNoDefault,
+                                  "relative tolerance of adaptive steps: with rtol or atol (the other then takes the "
+                                  "same value) integrate chooses its step sizes by step doubling and h is the first "
+                                  "step tried"};
+inline constexpr NumberField atol{"atol", 0.0, 1.0, true, kNoDefault, "absolute tolerance of adaptive steps"};
+inline constexpr NumberField tolerances{"tolerances", 0.0, 1.0, true, kNoDefault,
+                                        "work-precision against tolerance: each choice runs with adaptive steps at "
+                                        "rtol = atol = each of these (instead of the fixed steps h)"};
+inline constexpr IntegerField max_steps{"max_steps", 1, 100000, 100000,
+                                        "adaptive steps: the most steps, accepted and rejected, one integration takes"};
 
 inline constexpr const NumberField* kNumberFields[] = {&h, &tol, &t_end};
-inline constexpr const IntegerField* kIntegerFields[] = {&n, &max_iterations, &restarts};
+inline constexpr const IntegerField* kIntegerFields[] = {&n, &max_iterations, &multistart};
 
 // A bound as a person writes it: 1e6, 1e-16, 100, 0.5 (shortest round-trip, no "e+06").
 std::string format_bound(double x);
@@ -88,6 +103,7 @@ enum Route : unsigned {
   render_basins = 1u << 7,
   render_work_precision = 1u << 8,
   render_residuals = 1u << 9,
+  render_invariants = 1u << 10,
 };
 using Routes = unsigned;
 inline constexpr Routes kSolveLike = solve | basins | integrate | work_precision;  // one equation of size n
@@ -103,10 +119,12 @@ enum class Cap { none, n, iterations, threads, frames, grid_axis };
 using Member = std::variant<
     ProblemKind ProblemSpec::*, std::string ProblemSpec::*, int ProblemSpec::*, std::uint64_t ProblemSpec::*,
     std::optional<Eigen::MatrixXd> ProblemSpec::*, RigidBodyParams ProblemSpec::*,
+    std::optional<std::string> ProblemSpec::*, user_field::Parameters ProblemSpec::*,
     Method SolverOptions::*, Differential SolverOptions::*, LinearSolver SolverOptions::*, Stopping SolverOptions::*,
     Globalization SolverOptions::*, double SolverOptions::*, int SolverOptions::*, bool SolverOptions::*,
     double SolveRequest::*, std::optional<Eigen::MatrixXd> SolveRequest::*,
     double IntegrateRequest::*, int IntegrateRequest::*, Integrator IntegrateRequest::*, Predictor IntegrateRequest::*,
+    std::optional<double> IntegrateRequest::*,
     double WorkPrecisionRequest::*, Predictor WorkPrecisionRequest::*, std::vector<double> WorkPrecisionRequest::*,
     std::vector<WorkPrecisionChoice> WorkPrecisionRequest::*,
     Integrator WorkPrecisionChoice::*, Method WorkPrecisionChoice::*, Differential WorkPrecisionChoice::*,
@@ -114,7 +132,8 @@ using Member = std::variant<
     int SweepRequest::*, std::optional<Shard> SweepRequest::*,
     std::vector<Method> BasinRequest::*, int BasinRequest::*, std::optional<double> BasinRequest::*,
     std::optional<Eigen::VectorXd> BasinRequest::*, std::optional<Shard> BasinRequest::*,
-    Eigen::Vector3d RigidBodyParams::*, int Shard::*>;
+    Eigen::Vector3d RigidBodyParams::*, int Shard::*, HeavyTopParams ProblemSpec::*, double HeavyTopParams::*,
+    Eigen::Vector3d HeavyTopParams::*, Eigen::Matrix3d HeavyTopParams::*>;
 
 using Default = std::variant<std::monostate, double, long long, bool, std::string>;
 
@@ -138,7 +157,7 @@ struct Field {
   std::size_t min_items = 0, max_items = 0;
   Cap cap_items = Cap::none;
   std::string items{};
-  std::string schema{};                         // object: the named schema it is published as (RigidBody)
+  std::string schema{};                         // object: the named schema it is published as (RigidBody, HeavyTop)
   std::vector<Field> properties{};              // object: its fields
   std::vector<std::string> required{};          // object: the fields it needs
 

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "groups/mechanics_groups.hpp"
+#include "groups/se3_group.hpp"
 #include "groups/with_group.hpp"
 #include "register_group.hpp"
 #include "request_error.hpp"
@@ -9,12 +11,15 @@
 namespace lienewton {
 namespace {
 
-// Every family a request may name. The rotation groups are the service's own; a family added elsewhere (a test's
-// group) registers itself with register_group<Family>() at static initialisation.
+// Every family a request may name. The rotation groups, SE(3) and the products with R^k are the service's own; a family added elsewhere
+// (a test's group) registers itself with register_group<Family>() at static initialisation.
 std::vector<std::unique_ptr<GroupFamily>>& families() {
   static std::vector<std::unique_ptr<GroupFamily>> all = [] {
     std::vector<std::unique_ptr<GroupFamily>> v;
     v.push_back(std::make_unique<FamilyOf<SOFamily>>());
+    v.push_back(std::make_unique<FamilyOf<SEFamily>>());
+    v.push_back(std::make_unique<FamilyOf<SOxRFamily>>());
+    v.push_back(std::make_unique<FamilyOf<SExRFamily>>());
     return v;
   }();
   return all;

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,17 +22,26 @@ class GroupFamily {
   virtual ~GroupFamily() = default;
   virtual std::string name() const = 0;         // as a request names it: "SO"
   virtual std::string title(int n) const = 0;   // as a title names its member: "SO(3)"
+  // The index of the family's one member, if it has only one (SE: 3); validation checks n before anything else.
+  virtual std::optional<int> only_index() const = 0;
+  // The size of its member's matrices (n on SO(n), n + 1 on SE(n)): a request's z and y0 are that square size.
+  virtual int matrix_size(int n) const = 0;
   virtual int algebra_dim(int n) const = 0;
   virtual std::string algebra_dimension() const = 0;  // algebra_dim as a formula in n: "n(n-1)/2"
   virtual double log_radius() const = 0;
   virtual bool defines(ProblemKind kind, int n) const = 0;  // the problem is defined on the group (problems.hpp)
   virtual Eigen::MatrixXd random(int n, std::uint64_t seed) const = 0;  // the seeded start
-  // Why a request's matrix `name` (n x n, finite) is refused as an element, or why y0 cannot be reached from z;
+  // Why a request's matrix `name` (matrix_size square, finite) is refused as an element, or why y0 cannot be reached from z;
   // empty when accepted.
   virtual std::string not_an_element(int n, const Eigen::MatrixXd& m, const std::string& name) const = 0;
   virtual std::string not_reachable(int n, const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const = 0;
   virtual Eigen::MatrixXd project(int n, const Eigen::MatrixXd& m) const = 0;  // the element nearest to m
   virtual bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const = 0;  // basin_map.hpp
+  // ||hat(vee(m)) - m||: how far the matrix m (matrix_size square) is from the algebra (a user's g must lie in it).
+  virtual double algebra_defect(int n, const Eigen::MatrixXd& m) const = 0;
+  // The rotation part of an element (matrix_size square), where the group has one: the body axes that pictures of
+  // frames draw (SO(3): y itself; SE(3): R of [[R, p], [0, 1]]; SO(3) x R^3: its R). nullopt on the other groups.
+  virtual std::optional<Eigen::Matrix3d> rotation(int n, const Eigen::MatrixXd& m) const = 0;
 
   // The requests on the group (validated by their callers).
   virtual SolveResult solve(const SolveRequest& request, const TraceCallback& on_iteration) const = 0;

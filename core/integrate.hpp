@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "fields.hpp"
+#include "invariants.hpp"
 #include "problem_spec.hpp"
 #include "solver_options.hpp"
 #include "status.hpp"
@@ -18,12 +20,18 @@ struct IntegrateRequest {
   double h = 0.1;
   double t_end = 1.0;
   Integrator integrator = Integrator::implicit_euler;
-  // Where each stage's iteration starts. lie-euler by default: it costs one g and one exp per stage, never starts
-  // worse than Z_i (it falls back to Z_i when its residual is not smaller), and keeps Newton in the basin of the
-  // root near y_k (paper-sine N = 5, h = 1/16 converges to a distant root from Z_i = y_k).
+  // Where each stage's first solve starts: lie-euler (default) at the explicit Lie-Euler value, the tangent of the
+  // stage's branch of roots at h = 0; none at Z_i, as the paper starts at y_0 = z. Either way the stage's root must
+  // be the one continued from Z_i (core/requests_on_group.hpp).
   Predictor predictor = Predictor::lie_euler;
   int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none)
   bool reference = true;              // compute the reference solution and the global error
+  // Adaptive steps (step doubling, docs/integrators.md): with rtol or atol (the other then takes the same value)
+  // the integrator chooses its step sizes, h is the first step tried, and at most max_steps steps (accepted and
+  // rejected) are taken.
+  std::optional<double> rtol{}, atol{};
+  int max_steps = static_cast<int>(fields::max_steps.default_value);
+  bool adaptive() const { return rtol || atol; }
 };
 
 struct StepRecord {
@@ -32,7 +40,12 @@ struct StepRecord {
   int iterations = 0;    // summed over stages
   double residual = 0;   // largest final stage residual
   Status status = Status::converged;  // worst stage status
-  double energy = 0;     // rigid body kinetic energy after the step (0 for other problems)
+  InvariantValues invariants{};  // the problem's invariants at the state after the step (invariants.hpp)
+  int substeps = 0;      // steps taken inside this output step: 1, or more where halving kept the solution's branch
+                         // (adaptive: 2, the half steps whose product is y)
+  double h = 0;          // the step's size (fixed steps: t_end / steps; adaptive: the accepted step)
+  std::optional<double> error_estimate{};  // adaptive: the accepted step's scaled local error estimate (<= 1)
+  int rejected = 0;      // adaptive: tries rejected before this step was accepted (error above 1 or a failing stage)
 };
 
 struct IntegrateResult {
@@ -40,10 +53,11 @@ struct IntegrateResult {
   std::string reason;
   std::vector<StepRecord> steps;
   std::optional<double> global_error;  // ||y_N - y_ref(t_end)||_F, when reference was requested
-  std::optional<double> energy_drift;  // rigid body: max_k |E_k - E_0| / E_0
-  std::optional<double> initial_energy;  // rigid body: E_0 = E(y(0))
+  InvariantValues initial_invariants{};  // the problem's invariants at y(0)
+  InvariantValues invariant_drifts{};    // max_k |I_k - I_0| / |I_0| over the steps taken (InvariantDrift)
   double orthogonality_error = 0;      // max over steps of ||y^T y - I||_F
   int total_iterations = 0;            // Newton (or fixed-point) iterations summed over every stage of every step
+  int substeps = 0;                    // steps taken, halved ones counted as theirs
   double mean_iterations = 0;          // total_iterations / steps taken
   Eigen::MatrixXd y;                   // final state
   std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))
@@ -52,6 +66,8 @@ struct IntegrateResult {
                                        // of the S steps and the last one taken
   double cpu_seconds = 0;              // CPU time of the stepping (excluding the reference)
   double reference_seconds = 0;
+  bool adaptive = false;               // the steps were chosen by the error estimate (rtol/atol)
+  int rejected = 0;                    // adaptive: tries rejected, summed over the steps
 };
 
 using StepCallback = std::function<bool(const StepRecord&)>;

@@ -12,7 +12,10 @@ std::string_view to_string(LinearSolver v) { return words(v).api; }
 std::string_view to_string(Stopping v) { return words(v).api; }
 std::string_view to_string(Globalization v) { return words(v).api; }
 std::string_view to_string(Predictor v) { return words(v).api; }
-std::string_view to_string(StageStart v) { return words(v).api; }
+std::string_view to_string(Branch v) { return words(v).api; }
+std::string_view to_string(Search v) { return words(v).api; }
+std::string_view to_string(PathPointKind v) { return words(v).api; }
+std::string_view to_string(Invariant v) { return words(v).api; }
 std::optional<Status> status_from_string(std::string_view s) { return from_api_name(kAllStatuses, s); }
 std::optional<ProblemKind> problem_from_string(std::string_view s) { return from_api_name(kAllProblems, s); }
 std::optional<Method> method_from_string(std::string_view s) { return from_api_name(kAllMethods, s); }

@@ -6,15 +6,36 @@
 
 namespace lienewton {
 
-enum class ProblemKind { paper_linear, paper_sine, rigid_body };
+enum class ProblemKind { paper_linear, paper_sine, rigid_body, heavy_top };
+// The conserved quantities a built-in problem reports along an integration (core/invariants.hpp).
+enum class Invariant { energy, vertical_momentum };
 // fixed-point (1.2); newton-group = Version 1 (3.5); newton-algebra = Version 2 (3.20)
 enum class Method { fixed_point, newton_group, newton_algebra };
 // The fixed point forms no Newton differential, so a differential choice means nothing for it.
 inline constexpr bool uses_differential(Method m) { return m != Method::fixed_point; }
 // finite-difference (3.18)/(3.19); dexpinv-0 (3.10)/(3.16); dexpinv-1 (3.11)/(3.17); exact (3.8)/(3.22)
 enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
-// implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6)
-enum class Integrator { implicit_euler, dirk_cg2 };
+// implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6); rkmk-gauss1/2/3
+// and rkmk-radau2/3: implicit Runge-Kutta-Munthe-Kaas methods on the coupled stage system (core/rkmk_tableau.hpp,
+// core/solvers/rkmk_stages.hpp); rkmk4: the explicit classical RKMK method of order 4, the baseline; dirk-cg3: a
+// 3-stage DIRK Crouch-Grossman method of order 3 (core/requests_on_group.hpp).
+enum class Integrator { implicit_euler, dirk_cg2, rkmk_gauss1, rkmk_gauss2, rkmk_gauss3, rkmk_radau2, rkmk_radau3,
+                        rkmk4, dirk_cg3 };
+// The order p of an integrator's global error O(h^p), which the order tests and the work-precision fits check.
+inline constexpr int order_of(Integrator i) {
+  switch (i) {
+    case Integrator::implicit_euler: return 1;
+    case Integrator::dirk_cg2: return 2;
+    case Integrator::rkmk_gauss1: return 2;
+    case Integrator::rkmk_gauss2: return 4;
+    case Integrator::rkmk_gauss3: return 6;
+    case Integrator::rkmk_radau2: return 3;
+    case Integrator::rkmk_radau3: return 5;
+    case Integrator::rkmk4: return 4;
+    case Integrator::dirk_cg3: return 3;
+  }
+  return 1;
+}
 // How the Newton system is solved: auto picks lu below kKrylovThreshold (solvers/newton_step.hpp) and gmres above;
 // lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
 enum class LinearSolver { auto_select, lu, gmres };
@@ -30,10 +51,16 @@ enum class Globalization { none, line_search, trust_region };
 // none = at Z_i, as the paper starts at y_0 = z; lie-euler = at the explicit Lie-Euler value Z_i exp(h a_ii g(Z_i)),
 // whose residual h a_ii (g(Z_i) - g(Y)) is O(h^2) instead of O(h) (core/integrate.cpp).
 enum class Predictor { none, lie_euler };
-// Where a continuation stage (core/solvers/continuation.hpp) starts its iteration: given = the request's start (z
-// or y0), root = the previous stage's root, identity = the identity of z's component, restart = one of the
-// seeded starts around the request's start (core/solvers/restart_start.hpp).
-enum class StageStart { given, root, identity, restart };
+// Which root a result's y is (core/solvers/continuation.hpp): continued = the root reached by following z's branch
+// of roots from h = 0 to h with no fold passed; other = known not to be that root (the branch folds before h, or
+// the root lies elsewhere); unchecked = nothing was done that would tell.
+enum class Branch { continued, other, unchecked };
+// Which search produced a result's y: the method's plain solve from the request's start, continuation along z's
+// branch, or one of the multistart's seeded starts (core/solvers/multistart.hpp).
+enum class Search { plain, continuation, multistart };
+// A point of continuation's path: a corrected point of the branch (path), the method's solve at the requested h
+// (final), or the branch's turning point in h (fold).
+enum class PathPointKind { path, final, fold };
 
 std::string_view to_string(ProblemKind);
 std::string_view to_string(Method);
@@ -43,7 +70,10 @@ std::string_view to_string(LinearSolver);
 std::string_view to_string(Stopping);
 std::string_view to_string(Globalization);
 std::string_view to_string(Predictor);
-std::string_view to_string(StageStart);
+std::string_view to_string(Branch);
+std::string_view to_string(Search);
+std::string_view to_string(PathPointKind);
+std::string_view to_string(Invariant);
 std::optional<ProblemKind> problem_from_string(std::string_view);
 std::optional<Method> method_from_string(std::string_view);
 std::optional<Differential> differential_from_string(std::string_view);
@@ -54,17 +84,23 @@ std::optional<Globalization> globalization_from_string(std::string_view);
 std::optional<Predictor> predictor_from_string(std::string_view);
 
 inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
-                                               ProblemKind::rigid_body};
+                                               ProblemKind::rigid_body, ProblemKind::heavy_top};
+inline constexpr Invariant kAllInvariants[] = {Invariant::energy, Invariant::vertical_momentum};
 inline constexpr Method kAllMethods[] = {Method::fixed_point, Method::newton_group, Method::newton_algebra};
 inline constexpr Differential kAllDifferentials[] = {Differential::finite_difference, Differential::dexpinv_0,
                                                      Differential::dexpinv_1, Differential::exact};
-inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Integrator::dirk_cg2};
+inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Integrator::dirk_cg2,
+                                                 Integrator::rkmk_gauss1,    Integrator::rkmk_gauss2,
+                                                 Integrator::rkmk_gauss3,    Integrator::rkmk_radau2,
+                                                 Integrator::rkmk_radau3,    Integrator::rkmk4,
+                                                 Integrator::dirk_cg3};
 inline constexpr LinearSolver kAllLinearSolvers[] = {LinearSolver::auto_select, LinearSolver::lu, LinearSolver::gmres};
 inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algebra_residual};
 inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,
                                                        Globalization::trust_region};
 inline constexpr Predictor kAllPredictors[] = {Predictor::none, Predictor::lie_euler};
-inline constexpr StageStart kAllStageStarts[] = {StageStart::given, StageStart::root, StageStart::identity,
-                                                 StageStart::restart};
+inline constexpr Branch kAllBranches[] = {Branch::continued, Branch::other, Branch::unchecked};
+inline constexpr Search kAllSearches[] = {Search::plain, Search::continuation, Search::multistart};
+inline constexpr PathPointKind kAllPathPointKinds[] = {PathPointKind::path, PathPointKind::final, PathPointKind::fold};
 
 }  // namespace lienewton

@@ -1,17 +1,26 @@
 #include "problem_spec.hpp"
 
 #include "group_registry.hpp"
+#include "problems.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
 
-Eigen::MatrixXd ProblemSpec::start() const { return z ? *z : group_family(group).random(n, seed); }
+Eigen::MatrixXd ProblemSpec::start() const {
+  if (z) return *z;
+  if (is(ProblemKind::heavy_top)) return HeavyTop{heavy_top}.start();
+  return group_family(group).random(n, seed);
+}
 
 void validate(const ProblemSpec& problem) {
   fields::check_bounds(problem);  // n
   validation::check_problem_domain(problem);
   validation::check_rigid_body(problem.rigid_body);
+  validation::check_heavy_top(problem);
   validation::check_start_point(problem);
+  validation::check_user_field(problem);
 }
+
+std::string ProblemSpec::name() const { return g ? "g(y)" : std::string(to_string(kind)); }
 
 }  // namespace lienewton

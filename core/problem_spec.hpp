@@ -6,8 +6,10 @@
 #include <optional>
 #include <string>
 
+#include "heavy_top_params.hpp"
 #include "options.hpp"
 #include "rigid_body_params.hpp"
+#include "user_field/program.hpp"
 
 namespace lienewton {
 
@@ -16,14 +18,28 @@ struct ProblemSpec {
   std::string group = "SO";  // the Lie group by its registered name; n is its index, as in SO(n)
   int n = 3;
   std::uint64_t seed = 1;
-  std::optional<Eigen::MatrixXd> z{};  // start point; when absent, the group's random element from seed
+  // start point; when absent, the group's random element from seed (heavy-top: its state of heavy_top's
+  // rotation and omega, which give its start instead of z)
+  std::optional<Eigen::MatrixXd> z{};
   RigidBodyParams rigid_body{};
+  HeavyTopParams heavy_top{};
+  // The user's own field g(y) as a program (user_field/program.hpp), used instead of kind; the named numbers and
+  // matrices it reads.
+  std::optional<std::string> g{};
+  user_field::Parameters parameters{};
 
-  // z, or the seeded random start point when z is absent.
+  // Whether the request's field is the built-in problem `k` (not a user's program).
+  bool is(ProblemKind k) const { return !g && kind == k; }
+  // The field's name in titles and reasons: the built-in problem's, or "g(y)".
+  std::string name() const;
+
+  // z, or heavy-top's start, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;
 };
 
-// Checks n, the group, that the problem is defined on it, the problem's parameters and z; throws RequestError.
+// Checks n, the group, that the problem is defined on it, the problem's parameters and z, and compiles a user's
+// program g (its errors name the line and column) and checks that g(z) lies in the group's algebra; throws
+// RequestError.
 void validate(const ProblemSpec& problem);
 
 }  // namespace lienewton

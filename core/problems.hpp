@@ -7,10 +7,13 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <optional>
+#include <string>
 #include <type_traits>
 
+#include "groups/mechanics_groups.hpp"
 #include "groups/so3_group.hpp"
 #include "groups/son_group.hpp"
+#include "heavy_top_params.hpp"
 #include "options.hpp"
 #include "rigid_body_params.hpp"
 
@@ -25,6 +28,10 @@ class VectorField {
   virtual ~VectorField() = default;
   virtual Vector g(const Element& y) const = 0;
   virtual Vector dg(const Element& y, const Vector& u) const = 0;
+  // The time t at which g(t, y) is evaluated from now on. Integrators set it before each stage (t_k + c_i h);
+  // solves leave it at 0. Built-in problems are autonomous and ignore it. A field belongs to one request, so
+  // setting it is never shared between threads.
+  virtual void set_time(double /*t*/) {}
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
     Operator m = zero_operator(group);
@@ -133,6 +140,76 @@ struct RigidBody {
   static Eigen::Matrix3d embed(const Eigen::Vector3d& w) { return so3::hat(w); }
 };
 
+// The heavy top on SO(3) x R^3 (heavy_top_params.hpp), its state the 7 x 7 block-diagonal
+// y = [[R, 0], [0, [[I, w], [0, 1]]]] of SO3xR3Group: y' = y g(y) with
+//   g(y) = [[hat(w), 0], [0, [[0, a], [0, 0]]]],  a = J^-1 ((J w) x w + m chi x (R^T gamma)),
+// i.e. R' = R hat(w), w' = a. Its energy 1/2 w^T J w - m gamma^T R chi is conserved, and so is the vertical
+// angular momentum e3^T R J w when gamma is vertical.
+struct HeavyTop {
+  HeavyTopParams params;
+  template <class M>
+  M g(const M& y) const {
+    const Eigen::Vector3d w = omega(y);
+    return embed<M>(w, acceleration(rotation(y), w));
+  }
+  // Along y' = y dir, dir = hat(u_r, u_w): R' = R hat(u_r), w' = u_w, so (R^T gamma)' = -hat(u_r) R^T gamma
+  // = (R^T gamma) x u_r, and a' = J^-1 ((J u_w) x w + (J w) x u_w + m chi x ((R^T gamma) x u_r)).
+  template <class M>
+  M dg(const M& y, const M& dir, const M&) const {
+    const Eigen::Vector3d w = omega(y), u_r = so3::vee(rotation(dir)), u_w = omega(dir);
+    const Eigen::Vector3d b = rotation(y).transpose() * params.gravity;
+    const Eigen::Vector3d jw = params.inertia.cwiseProduct(w);
+    const Eigen::Vector3d da = params.inertia.cwiseProduct(u_w).cross(w) + jw.cross(u_w) +
+                               params.mass * params.center.cross(b.cross(u_r));
+    return embed<M>(u_w, da.cwiseQuotient(params.inertia));
+  }
+  // The same on the coordinates (u_r, u_w): [[0, I], [J^-1 m hat(chi) hat(b), J^-1 (hat(J w) - hat(w) J)]].
+  SO3xR3Group::Operator dg_matrix(const SO3xR3Group&, const SO3xR3Group::Element& y) const {
+    const Eigen::Vector3d w = omega(y), b = rotation(y).transpose() * params.gravity;
+    const Eigen::Vector3d inverse = params.inertia.cwiseInverse();
+    SO3xR3Group::Operator m = SO3xR3Group::Operator::Zero();
+    m.topRightCorner<3, 3>().setIdentity();
+    m.bottomLeftCorner<3, 3>() = inverse.asDiagonal() * (params.mass * so3::hat(params.center) * so3::hat(b));
+    m.bottomRightCorner<3, 3>() = inverse.asDiagonal() * (so3::hat(params.inertia.cwiseProduct(w)) -
+                                                          so3::hat(w) * params.inertia.asDiagonal());
+    return m;
+  }
+  template <class M>
+  double energy(const M& y) const {
+    const Eigen::Vector3d w = omega(y);
+    return 0.5 * w.dot(params.inertia.cwiseProduct(w)) - params.mass * params.gravity.dot(rotation(y) * params.center);
+  }
+  template <class M>
+  double vertical_momentum(const M& y) const {
+    return (rotation(y) * params.inertia.cwiseProduct(omega(y))).z();
+  }
+  // y(0): the state of (R(0), w(0)).
+  Eigen::MatrixXd start() const {
+    Eigen::MatrixXd y = Eigen::MatrixXd::Identity(7, 7);
+    y.topLeftCorner<3, 3>() = params.rotation;
+    y.block<3, 1>(3, 6) = params.omega;
+    return y;
+  }
+
+ private:
+  Eigen::Vector3d acceleration(const Eigen::Matrix3d& r, const Eigen::Vector3d& w) const {
+    const Eigen::Vector3d torque = params.mass * params.center.cross(r.transpose() * params.gravity);
+    return (params.inertia.cwiseProduct(w).cross(w) + torque).cwiseQuotient(params.inertia);
+  }
+  template <class M>
+  static Eigen::Matrix3d rotation(const M& y) { return y.template topLeftCorner<3, 3>(); }
+  template <class M>
+  static Eigen::Vector3d omega(const M& y) { return y.template block<3, 1>(3, 6); }
+  // [[hat(w), 0], [0, [[0, a], [0, 0]]]]: the algebra element of (w, a).
+  template <class M>
+  static M embed(const Eigen::Vector3d& w, const Eigen::Vector3d& a) {
+    M out = M::Zero(7, 7);
+    out.template topLeftCorner<3, 3>() = so3::hat(w);
+    out.template block<3, 1>(3, 6) = a;
+    return out;
+  }
+};
+
 template <class G, class Problem>
 class VectorFieldOf final : public VectorField<G> {
  public:
@@ -160,7 +237,8 @@ class VectorFieldOf final : public VectorField<G> {
 
 // The groups each problem is defined on (validate() checks before make_field). The paper's problems are matrix
 // formulas with skew values: defined on every group of n x n matrices whose algebra holds the skew matrices
-// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone.
+// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone; heavy-top's the
+// 7 x 7 states of SO(3) x R^3.
 template <class G>
 bool algebra_holds_skew_matrices(const G& group) {
   Eigen::MatrixXd s = group.matrix(group.identity());
@@ -168,24 +246,42 @@ bool algebra_holds_skew_matrices(const G& group) {
     for (Eigen::Index j = 0; j < s.cols(); ++j) s(i, j) = double(j - i);
   return group.matrix(group.hat(group.vee(group.element(s)))) == s;
 }
+// Where rigid-body's field compiles: its formulas take 3 x 3 matrices, so on groups of 3 x 3 or dynamic-size
+// elements (SO(3) in closed form, and SO(N) at N = 3 by the spectral path, which the tests compare).
+template <class G>
+inline constexpr bool kTakesRigidBody =
+    G::Element::RowsAtCompileTime == 3 || G::Element::RowsAtCompileTime == Eigen::Dynamic;
 template <class G>
 bool defined_on(ProblemKind kind, const G& group) {
   if (kind == ProblemKind::rigid_body) return std::is_same_v<G, SO3Group>;
+  if (kind == ProblemKind::heavy_top) return std::is_same_v<G, SO3xR3Group>;
   return algebra_holds_skew_matrices(group);
 }
-// The one n a problem is written for, if any: rigid-body's 3 (its group's index).
+// The one n a problem is written for, if any: rigid-body's and heavy-top's 3 (their group's index).
 inline std::optional<int> required_index(ProblemKind kind) {
-  if (kind == ProblemKind::rigid_body) return 3;
+  if (kind == ProblemKind::rigid_body || kind == ProblemKind::heavy_top) return 3;
+  return std::nullopt;
+}
+// The one group family a problem is written for, if any: heavy-top's SO(3) x R^3.
+inline std::optional<std::string> required_group(ProblemKind kind) {
+  if (kind == ProblemKind::heavy_top) return SOxRFamily::kName;
   return std::nullopt;
 }
 
 // The field of a request's problem on group G (one it is defined_on; validate() checks).
 template <class G>
-std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb) {
+std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb,
+                                           const HeavyTopParams& top = {}) {
   switch (kind) {
     case ProblemKind::paper_linear: return std::make_unique<VectorFieldOf<G, PaperLinear>>(group, PaperLinear{});
     case ProblemKind::paper_sine: return std::make_unique<VectorFieldOf<G, PaperSine>>(group, PaperSine{});
-    case ProblemKind::rigid_body: return std::make_unique<VectorFieldOf<G, RigidBody>>(group, RigidBody{rb});
+    case ProblemKind::rigid_body:
+      if constexpr (kTakesRigidBody<G>) return std::make_unique<VectorFieldOf<G, RigidBody>>(group, RigidBody{rb});
+      break;
+    case ProblemKind::heavy_top:
+      if constexpr (std::is_same_v<G, SO3xR3Group>)
+        return std::make_unique<VectorFieldOf<G, HeavyTop>>(group, HeavyTop{top});
+      break;
   }
   return nullptr;
 }

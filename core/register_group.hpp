@@ -4,6 +4,7 @@
 //   struct Family {
 //     static constexpr const char* kName = "SO";                       // as requests name it
 //     template <class F> static decltype(auto) with_group(int n, F&& f);  // f(the group of index n)
+//     static constexpr int kOnlyIndex = 3;  // optional: the index of its one member (absent: every n is one)
 //   };
 // and each group it hands to f satisfies LieGroup. Registering is one line beside the family:
 //   inline const bool kMyGroupRegistered = register_group<MyFamily>();
@@ -20,6 +21,16 @@ class FamilyOf final : public GroupFamily {
   std::string name() const override { return Family::kName; }
   std::string title(int n) const override {
     return Family::with_group(n, [](const auto& g) { return std::string(g.name()); });
+  }
+  std::optional<int> only_index() const override {
+    if constexpr (requires { Family::kOnlyIndex; }) {
+      return Family::kOnlyIndex;
+    } else {
+      return std::nullopt;
+    }
+  }
+  int matrix_size(int n) const override {
+    return Family::with_group(n, [](const auto& g) { return static_cast<int>(g.matrix(g.identity()).rows()); });
   }
   int algebra_dim(int n) const override {
     return Family::with_group(n, [](const auto& g) { return g.dim(); });
@@ -47,6 +58,19 @@ class FamilyOf final : public GroupFamily {
   }
   bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const override {
     return Family::with_group(n, [&](const auto& g) { return lienewton::same_root(g, g.element(a), g.element(b)); });
+  }
+  double algebra_defect(int n, const Eigen::MatrixXd& m) const override {
+    return Family::with_group(n, [&](const auto& g) { return lienewton::algebra_defect(g, m); });
+  }
+
+  std::optional<Eigen::Matrix3d> rotation(int n, const Eigen::MatrixXd& m) const override {
+    return Family::with_group(n, [&](const auto& g) -> std::optional<Eigen::Matrix3d> {
+      if constexpr (requires { g.rotation(g.element(m)); }) {
+        return g.rotation(g.element(m));
+      } else {
+        return std::nullopt;
+      }
+    });
   }
 
   SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) const override {

@@ -7,9 +7,7 @@
 namespace lienewton {
 
 void validate(const SolverOptions& options) {
-  fields::check_bounds(options);  // tol, max_iterations, restarts
-  if (options.restarts > 0 && !options.continuation)
-    validation::unprocessable("restarts", "restarts are the last try of a continued solve: they need continuation: true");
+  fields::check_bounds(options);  // tol, max_iterations, multistart
 }
 
 void check_globalization(Method method, const SolverOptions& options) {

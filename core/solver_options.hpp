@@ -19,11 +19,11 @@ struct SolverOptions {
   // (solvers/watchdog.hpp). Off by default: its episodes can spend the iterations in which the strategy alone
   // would reach a stationary point without a root (local_minimum) or log's cut (no_descent).
   bool watchdog = false;
-  // Reach h through h_0 < h_1 < ... < h, each stage started at the previous root (solvers/continuation.hpp).
+  // The root continued from z: follow z's branch of roots from h = 0 to h (solvers/continuation.hpp).
   bool continuation = false;
-  // Continuation only: after its paths fail, up to this many solves at h from seeded starts around the request's
-  // start (the search's last try, solvers/continuation.hpp).
-  int restarts = 0;
+  // When no root was found: up to this many solves at h from seeded starts around the request's start
+  // (solvers/multistart.hpp).
+  int multistart = 0;
   // Wall and CPU time of every trace record, and the solve's CPU time. Sweeps and basin maps turn it off: reading
   // the thread's CPU clock is a system call that costs more than an SO(3) iteration (two per solve were 13 % of a
   // 256 x 256 SO(3) basin map's CPU time). Untimed, a result's cpu_seconds is 0 (neither reports it); its wall
@@ -31,8 +31,8 @@ struct SolverOptions {
   bool timed = true;
 };
 
-// Checks the bounds of its rows in the field table (core/fields.hpp: tol, max_iterations, restarts) and that
-// restarts have continuation; throws RequestError naming the field.
+// Checks the bounds of its rows in the field table (core/fields.hpp: tol, max_iterations, multistart); throws
+// RequestError naming the field.
 void validate(const SolverOptions& options);
 // A globalization other than none needs a Newton method: 422 naming "globalization" for the fixed point.
 void check_globalization(Method method, const SolverOptions& options);

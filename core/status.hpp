@@ -18,7 +18,11 @@ enum class Status {
                           // point of 1/2 ||f||^2 that is no root)
   no_descent,             // globalised Newton: no step, however short, decreases 1/2 ||f||^2 although ||f|| is far
                           // above its floor and ||D^T f|| is not small: phi is not smooth there (log's cut at angle pi)
+  fold,                   // continuation: z's branch of roots turns back at fold_h < h, so no root continued from
+                          // z exists at h
   cancelled,              // the caller's callback asked to stop (client left, deadline passed)
+  min_step,               // adaptive integration: the step-size controller needed a step below the minimum step
+  max_steps,              // adaptive integration: the bound on steps (accepted and rejected) was reached before t_end
 };
 
 std::string_view to_string(Status status);
@@ -26,6 +30,6 @@ std::optional<Status> status_from_string(std::string_view name);
 inline constexpr Status kAllStatuses[] = {
     Status::converged, Status::max_iterations, Status::diverged,  Status::non_finite, Status::left_log_domain,
     Status::singular_differential, Status::stagnated, Status::off_branch, Status::local_minimum, Status::no_descent,
-    Status::cancelled};
+    Status::fold, Status::cancelled, Status::min_step, Status::max_steps};
 
 }  // namespace lienewton

@@ -22,12 +22,21 @@ namespace lienewton::validation {
 // A field of the table in fields.hpp; path names it in the error (e.g. "n", "cells[2].h").
 void check(const fields::NumberField& field, double x, const std::string& path);
 void check(const fields::IntegerField& field, long long x, const std::string& path);
-// The problem's group is registered and the problem is defined on it (group_registry.hpp, problems.hpp).
+// A tolerance of adaptive steps (rtol, atol, tolerances): a finite number in (0, 1], else 422 naming path. The
+// codec reads any finite number: a tolerance outside the range is well-formed, but nothing can meet it.
+void check_tolerance(const fields::NumberField& field, double x, const std::string& path);
+// The problem's group is registered, has a member of index n, and the problem is defined on it (group_registry.hpp, problems.hpp).
 void check_problem_domain(const ProblemSpec& problem);
 void check_rigid_body(const RigidBodyParams& params);
-// The problem's z, when given: n x n, finite and an element of the group (its not_an_element).
+// heavy_top's parameters (422 naming e.g. heavy_top.mass): mass and inertia positive, every entry finite and at most
+// HeavyTopParams::kBound in size, rotation a rotation; and no z for heavy-top, whose start they give.
+void check_heavy_top(const ProblemSpec& problem);
+// A user's program g: parameters well-named and finite, the program compiled for n (RequestError with its line
+// and column), g(z) in the group's algebra; parameters without g are refused.
+void check_user_field(const ProblemSpec& problem);
+// The problem's z, when given: the group's square size (n on SO(n)), finite and an element of the group (its not_an_element).
 void check_start_point(const ProblemSpec& problem);
-// y0, the iteration's start: n x n, finite, an element of the group and reachable from the problem's z (on SO(N):
+// y0, the iteration's start: z's size, finite, an element of the group and reachable from the problem's z (on SO(N):
 // orthogonal to 1e-10 and det y0 = det z, so that z^-1 y0 is a rotation). Throws RequestError naming "y0".
 void check_start_guess(const ProblemSpec& problem, const Eigen::MatrixXd& y0);
 

@@ -29,6 +29,30 @@ Words words(ProblemKind p) {
               "yᵀm), the body angular velocity from the constant spatial angular momentum m and the "
               "principal moments of inertia I. The exact flow keeps the energy E = ½ MᵀI⁻¹M, M = yᵀm. N = 3 "
               "only."};
+    case ProblemKind::heavy_top:
+      return {"heavy-top", "heavy-top (top under gravity, SO(3)×R³)", "heavy-top",
+              "the heavy top on SO(3)×R³: R′ = R·ω̂, Jω′ = (Jω)×ω + m χ×(Rᵀγ)",
+              "The heavy top, the benchmark of Lie group integrators for multibody systems (not in the paper): "
+              "the state (R, ω) on SO(3)×R³ (group SOxR, 7×7 block-diagonal matrices), R′ = R·ω̂ and Jω′ = "
+              "(Jω)×ω + m χ×(Rᵀγ), with mass m, principal moments J, centre of mass χ in the body, gravity γ "
+              "in space. Defaults m = 15, J = diag(0.234375, 0.46875, 0.234375), χ = (0, 1, 0), γ = (0, 0, "
+              "−9.81), R(0) = I, ω(0) = (0, 150, −4.61538): a fast spin about the body y-axis. The exact flow "
+              "keeps the energy ½ωᵀJω − m γᵀRχ and the vertical angular momentum e₃ᵀRJω."};
+  }
+  return {};
+}
+
+Words words(Invariant i) {
+  switch (i) {
+    case Invariant::energy:
+      return {"energy", "Energy", "energy", "the energy, kinetic (and potential, heavy top)",
+              "The total energy of the state: ½ MᵀI⁻¹M, M = yᵀm, for the rigid body; ½ωᵀJω − m γᵀRχ for the "
+              "heavy top. Evaluated from each returned state y, not from the integrator's stages."};
+    case Invariant::vertical_momentum:
+      return {"vertical_momentum", "Vertical angular momentum", "vertical momentum",
+              "the angular momentum about the vertical, e₃ᵀRJω (heavy top)",
+              "The heavy top's angular momentum about the spatial vertical e₃, e₃ᵀRJω: gravity's torque leaves it "
+              "unchanged when γ is vertical (as by default). Evaluated from each returned state y."};
   }
   return {};
 }
@@ -62,13 +86,14 @@ Words words(Differential d) {
               "round-off), one residual evaluation per basis direction: q = N(N−1)/2 per Newton step. What "
               "the paper’s experiments used."};
     case Differential::dexpinv_0:
-      return {"dexpinv-0", "dexp⁻¹ to order 0", "order 0", "dexp⁻¹ truncated after order 0 (3.10)/(3.11)",
-              "dexp⁻¹ truncated after order 0 (3.10): dexp⁻¹ᵥ(u) ≈ u, as if the group were commutative; for "
+      // Counted in terms of the series (3.9), not "order": an order here reads like a convergence order.
+      return {"dexpinv-0", "dexp⁻¹ truncated after 1 term", "1 term", "dexp⁻¹ truncated after 1 term (3.10)",
+              "dexp⁻¹ truncated after its first term (3.10): dexp⁻¹ᵥ(u) ≈ u, as if the group were commutative; for "
               "Version 2 the same truncation of dexp (3.16). Exact dg. Cheap, but only linear convergence "
               "once v = log(z⁻¹y) is not small."};
     case Differential::dexpinv_1:
-      return {"dexpinv-1", "dexp⁻¹ to order 1", "order 1", "dexp⁻¹ truncated after order 1 (3.10)/(3.11)",
-              "dexp⁻¹ truncated after order 1 (3.11): dexp⁻¹ᵥ(u) ≈ u + ½[v, u]; for Version 2 dexpᵥ(w) ≈ w "
+      return {"dexpinv-1", "dexp⁻¹ truncated after 2 terms", "2 terms", "dexp⁻¹ truncated after 2 terms (3.11)",
+              "dexp⁻¹ truncated after its first two terms (3.11): dexp⁻¹ᵥ(u) ≈ u + ½[v, u]; for Version 2 dexpᵥ(w) ≈ w "
               "− ½[v, w] (3.17). Exact dg."};
     case Differential::exact:
       return {"exact", "Exact dexp⁻¹", "exact", "the exact dexp⁻¹",
@@ -89,6 +114,47 @@ Words words(Integrator i) {
               "A two-stage L-stable, stiffly accurate SDIRK method in Crouch–Grossman form (section 6): "
               "each stage is an equation y = z·exp(γh g(y)), γ = 1 − 1/√2, of the same kind, solved in "
               "sequence by the chosen method; second order."};
+    case Integrator::rkmk_gauss1:
+      return {"rkmk-gauss1", "RKMK Gauss 1 (implicit midpoint)", "Gauss1",
+              "implicit Runge–Kutta–Munthe-Kaas, 1-stage Gauss–Legendre (order 2)",
+              "The implicit midpoint rule as a Runge–Kutta–Munthe-Kaas method (Munthe-Kaas 1999): one stage K = "
+              "g(y·exp(hK/2)) in the algebra, y⁽ᵏ⁺¹⁾ = y⁽ᵏ⁾·exp(hK); dexp⁻¹ truncated to the identity, as order 2 "
+              "allows. The stage system is solved by Newton in the algebra (either Newton method), or by the fixed "
+              "point; second order, A-stable."};
+    case Integrator::rkmk_gauss2:
+      return {"rkmk-gauss2", "RKMK Gauss 2", "Gauss2",
+              "implicit Runge–Kutta–Munthe-Kaas, 2-stage Gauss–Legendre (order 4)",
+              "Two-stage Gauss–Legendre as a Runge–Kutta–Munthe-Kaas method: the coupled stages Kᵢ = dexp⁻¹_Θᵢ(g(y·"
+              "exp Θᵢ)), Θᵢ = h Σ aᵢⱼKⱼ, with dexp⁻¹ (3.9) truncated after ad², solved as one system in the algebra "
+              "by Newton (exact Jacobian, or frozen per step with dexpinv-0/1, or finite differences); fourth "
+              "order, A-stable."};
+    case Integrator::rkmk_gauss3:
+      return {"rkmk-gauss3", "RKMK Gauss 3", "Gauss3",
+              "implicit Runge–Kutta–Munthe-Kaas, 3-stage Gauss–Legendre (order 6)",
+              "Three-stage Gauss–Legendre as a Runge–Kutta–Munthe-Kaas method: three coupled stages in the "
+              "algebra, dexp⁻¹ (3.9) truncated after ad⁴, solved together by Newton; sixth order, A-stable."};
+    case Integrator::rkmk_radau2:
+      return {"rkmk-radau2", "RKMK Radau IIA 2", "Radau2",
+              "implicit Runge–Kutta–Munthe-Kaas, 2-stage Radau IIA (order 3)",
+              "Two-stage Radau IIA as a Runge–Kutta–Munthe-Kaas method: coupled stages in the algebra, dexp⁻¹ "
+              "(3.9) truncated after ad¹, solved together by Newton; third order, L-stable and stiffly accurate: "
+              "for stiff fields."};
+    case Integrator::rkmk_radau3:
+      return {"rkmk-radau3", "RKMK Radau IIA 3", "Radau3",
+              "implicit Runge–Kutta–Munthe-Kaas, 3-stage Radau IIA (order 5)",
+              "Three-stage Radau IIA as a Runge–Kutta–Munthe-Kaas method: coupled stages in the algebra, dexp⁻¹ "
+              "(3.9) truncated after ad³, solved together by Newton; fifth order, L-stable and stiffly accurate."};
+    case Integrator::rkmk4:
+      return {"rkmk4", "RKMK4 (explicit)", "RKMK4", "explicit classical Runge–Kutta–Munthe-Kaas of order 4",
+              "The classical fourth-order Runge–Kutta method in Munthe-Kaas form, with the exact dexp⁻¹: explicit, "
+              "no equation to solve (method and differential are not used), so cheap per step but stable only "
+              "while h‖dg‖ is small. The baseline that shows when implicit methods pay."};
+    case Integrator::dirk_cg3:
+      return {"dirk-cg3", "DIRK Crouch–Grossman 3", "DIRK-CG3", "L-stable 3-stage SDIRK in Crouch–Grossman form (order 3)",
+              "A three-stage L-stable SDIRK method in Crouch–Grossman form (section 6), its "
+              "coefficients solving the order-3 conditions of Crouch–Grossman methods (Owren & Marthinsen 1999), "
+              "which add Σbᵢ²cᵢ + 2Σᵢ<ⱼ bᵢcᵢbⱼ = 1/3 to the classical ones; each stage y = z·exp(γh g(y)), "
+              "γ ≈ 0.436, solved in sequence by the chosen method as dirk-cg2's; third order."};
   }
   return {};
 }
@@ -148,14 +214,44 @@ Words words(Predictor p) {
   return {};
 }
 
-Words words(StageStart s) {
+Words words(Branch b) {
+  switch (b) {
+    case Branch::continued:
+      return {"continued", "z's branch", "continued",
+              "the root continued from y = z at h = 0: z's branch of roots followed to h, no fold passed",
+              "The implicit Euler step y = z·exp(h g(y)) (1.1) has many roots; the one an integrator needs is the "
+              "root that continues y = z from h = 0 (section 5). continued: continuation followed that branch "
+              "of roots from (z, 0) to the requested h without passing a fold, and the returned y is its root."};
+    case Branch::other:
+      return {"other", "another root", "other",
+              "known not to be the root continued from z: the branch folds before h, or this root lies elsewhere",
+              {}};
+    case Branch::unchecked:
+      return {"unchecked", "unchecked", "unchecked",
+              "which root this is was not checked (a plain solve; ask for continuation to know)", {}};
+  }
+  return {};
+}
+
+Words words(Search s) {
   switch (s) {
-    case StageStart::given: return {"start", "Request's start", "start", "the request's start (z or y0)", {}};
-    case StageStart::root: return {"root", "Previous root", "root", "the previous stage's root", {}};
-    case StageStart::identity:
-      return {"identity", "Identity", "identity", "the identity of z's component", {}};
-    case StageStart::restart:
-      return {"restart", "Seeded restart", "restart", "one of the seeded starts around the request's start", {}};
+    case Search::plain: return {"plain", "Plain solve", "plain", "the method's solve from the request's start", {}};
+    case Search::continuation:
+      return {"continuation", "Continuation", "continuation",
+              "pseudo-arclength continuation of z's branch of roots from h = 0", {}};
+    case Search::multistart:
+      return {"multistart", "Multistart", "multistart", "one of the seeded starts around the request's start", {}};
+  }
+  return {};
+}
+
+Words words(PathPointKind k) {
+  switch (k) {
+    case PathPointKind::path: return {"path", "Path point", "path", "a corrected point of z's branch", {}};
+    case PathPointKind::final:
+      return {"final", "Solve at h", "final", "the method's solve at the requested h from the path's prediction", {}};
+    case PathPointKind::fold:
+      return {"fold", "Fold", "fold", "the branch turns back in h here: no continued root beyond", {}};
   }
   return {};
 }
@@ -183,7 +279,15 @@ Words words(Status s) {
     case Status::no_descent:
       return {"no_descent", "no descent", "no descent", "no step decreases ½‖f‖² (globalised; φ not smooth there)",
               {}};
+    case Status::fold:
+      return {"fold", "fold", "fold", "z's branch of roots turns back before h: no continued root there", {}};
     case Status::cancelled: return {"cancelled", "cancelled", "cancelled", "cancelled, not computed", {}};
+    case Status::min_step:
+      return {"min_step", "below minimum step", "min step",
+              "adaptive steps: the error or a failing stage asked for a step below the minimum step", {}};
+    case Status::max_steps:
+      return {"max_steps", "max steps", "max steps", "adaptive steps: the bound on steps was reached before t_end",
+              {}};
   }
   return {};
 }

@@ -30,7 +30,10 @@ Words words(LinearSolver);
 Words words(Stopping);
 Words words(Globalization);
 Words words(Predictor);
-Words words(StageStart);
+Words words(Branch);
+Words words(Search);
+Words words(PathPointKind);
+Words words(Invariant);
 Words words(Status);
 
 // The value of all whose API name is name (words() found by argument-dependent lookup, so that an enum

@@ -16,6 +16,8 @@ namespace lienewton {
 namespace {
 
 constexpr std::size_t kMaxRuns = 200;
+// A global error below this is rounding's, not the method's: no order can be read from it.
+constexpr double kErrorAtRounding = 1e-12;
 
 std::vector<double> default_step_sizes() {
   std::vector<double> h;
@@ -23,12 +25,31 @@ std::vector<double> default_step_sizes() {
   return h;
 }
 
-IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, double h) {
-  IntegrateRequest r{.problem = req.problem, .solver = req.solver, .h = h, .t_end = req.t_end,
-                     .integrator = c.integrator, .predictor = req.predictor, .reference = false};
+// The run of choice c at its k-th step size, or (against tolerance) its k-th tolerance.
+IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, std::size_t k) {
+  IntegrateRequest r{.problem = req.problem, .solver = req.solver, .t_end = req.t_end, .integrator = c.integrator,
+                     .predictor = req.predictor, .reference = false};
   r.solver.method = c.method;
   r.solver.differential = c.differential;
+  if (req.tolerances.empty()) {
+    r.h = req.h[k];
+  } else {
+    r.h = std::min(r.h, req.t_end);
+    r.rtol = r.atol = req.tolerances[k];
+    r.max_steps = req.max_steps;
+  }
   return r;
+}
+
+// The runs' axis: the tolerances when given, else the step sizes (default_step_sizes() when absent).
+WorkPrecisionRequest with_axis(const WorkPrecisionRequest& request) {
+  WorkPrecisionRequest req = request;
+  if (req.h.empty() && req.tolerances.empty()) req.h = default_step_sizes();
+  return req;
+}
+
+std::size_t runs_per_choice(const WorkPrecisionRequest& req) {
+  return req.tolerances.empty() ? req.h.size() : req.tolerances.size();
 }
 
 // Short runs (tens of microseconds) are timed again until kTimingBudget of CPU time is spent, at most
@@ -47,32 +68,58 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
   return best;
 }
 
-// The observed order from the points whose run converged (a failed run's error says nothing about h^p).
-std::optional<double> series_order(const WorkPrecisionSeries& series) {
-  std::vector<double> h, error;
-  for (const WorkPrecisionPoint& p : series.points) {
-    if (p.status != Status::converged) continue;
-    h.push_back(p.h);
-    error.push_back(p.error);
+// The observed order (order_fit.hpp) over the honest points in the asymptotic range; each point says whether it
+// is in the fit and, if not, why.
+void fit_order(WorkPrecisionSeries& series) {
+  if (!series.points.empty() && series.points.front().tolerance) {
+    for (WorkPrecisionPoint& p : series.points)
+      p.excluded = "against tolerance: no order is fitted from adaptive runs";
+    return;
   }
-  return fitted_order(h, error);
+  std::vector<double> h, error;
+  std::vector<WorkPrecisionPoint*> honest;
+  for (WorkPrecisionPoint& p : series.points) {
+    p.in_fit = false;
+    if (p.status != Status::converged)
+      p.excluded = "the run did not converge on the solution's branch (" + std::string(to_string(p.status)) + ")";
+    else if (!(p.error > kErrorAtRounding))
+      p.excluded = "its error is at the level of rounding";
+    else {
+      honest.push_back(&p);
+      h.push_back(p.h);
+      error.push_back(p.error);
+    }
+  }
+  const AsymptoticRange range = asymptotic_range(h, error);
+  for (std::size_t i = 0; i < honest.size(); ++i) {
+    honest[i]->in_fit = range.contains(i);
+    if (!honest[i]->in_fit) honest[i]->excluded = "outside the asymptotic range of the smaller h";
+  }
+  series.fitted_order = range.order;
 }
 
 }  // namespace
 
-void validate(const WorkPrecisionRequest& req) {
-  if (req.choices.empty()) validation::invalid("choices", "choices must list at least one choice");
-  const std::vector<double> hs = req.h.empty() ? default_step_sizes() : req.h;
-  if (req.choices.size() * hs.size() > kMaxRuns)
-    validation::invalid("h", "choices x h must be at most " + std::to_string(kMaxRuns) + " runs");
-  for (double h : hs) validate(run_request(req, req.choices.front(), h));
+void validate(const WorkPrecisionRequest& request) {
+  if (request.choices.empty()) validation::invalid("choices", "choices must list at least one choice");
+  if (!request.h.empty() && !request.tolerances.empty())
+    validation::unprocessable("tolerances", "give either h (fixed steps) or tolerances (adaptive steps), not both");
+  for (double tol : request.tolerances) validation::check_tolerance(fields::tolerances, tol, "tolerances");
+  const WorkPrecisionRequest req = with_axis(request);
+  const std::size_t runs = runs_per_choice(req);
+  if (req.choices.size() * runs > kMaxRuns)
+    validation::invalid(req.tolerances.empty() ? "h" : "tolerances",
+                        "choices x " + std::string(req.tolerances.empty() ? "h" : "tolerances") + " must be at most " +
+                            std::to_string(kMaxRuns) + " runs");
+  for (std::size_t k = 0; k < runs; ++k) validate(run_request(req, req.choices.front(), k));
+  for (const WorkPrecisionChoice& c : req.choices) validate(run_request(req, c, 0));
   for (const WorkPrecisionChoice& c : req.choices) check_globalization(c.method, req.solver);
 }
 
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {
   validate(request);
-  WorkPrecisionRequest req = request;
-  if (req.h.empty()) req.h = default_step_sizes();
+  const WorkPrecisionRequest req = with_axis(request);
+  const std::size_t per_choice = runs_per_choice(req);
   const auto start = std::chrono::steady_clock::now();
   WorkPrecisionResult res;
   const double ref_start = thread_cpu_seconds();
@@ -83,24 +130,28 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
   res.series.resize(req.choices.size());
   for (std::size_t c = 0; c < req.choices.size(); ++c) {
     res.series[c].choice = req.choices[c];
-    res.series[c].points.resize(req.h.size());
+    res.series[c].points.resize(per_choice);
   }
-  const int runs = static_cast<int>(req.choices.size() * req.h.size());
-  std::vector<int> remaining(req.choices.size(), static_cast<int>(req.h.size()));
+  const int runs = static_cast<int>(req.choices.size() * per_choice);
+  std::vector<int> remaining(req.choices.size(), static_cast<int>(per_choice));
   std::mutex mutex;
   parallel_for(runs, 0, [&](int index) {
-    const std::size_t c = static_cast<std::size_t>(index) / req.h.size(), k = static_cast<std::size_t>(index) % req.h.size();
-    const IntegrateRequest ir = run_request(req, req.choices[c], req.h[k]);
+    const std::size_t c = static_cast<std::size_t>(index) / per_choice, k = static_cast<std::size_t>(index) % per_choice;
+    const IntegrateRequest ir = run_request(req, req.choices[c], k);
     const IntegrateResult run = integrate(ir);
     WorkPrecisionPoint& p = res.series[c].points[k];
-    p.h = req.h[k];
+    p.h = ir.adaptive() ? (run.steps.empty() ? 0.0 : run.steps.back().t / double(run.steps.size())) : ir.h;
+    p.tolerance = ir.rtol;
+    p.rejected = run.rejected;
     p.cpu_seconds = min_cpu_seconds(ir, run.cpu_seconds);
     p.status = run.status;
     p.error = (run.y - y_ref).norm();
     for (const auto& s : run.steps) p.iterations += s.iterations;
+    p.substeps = run.substeps;
+    p.drifts = run.invariant_drifts;
     std::lock_guard lock(mutex);
     if (--remaining[c] > 0) return true;
-    res.series[c].fitted_order = series_order(res.series[c]);
+    fit_order(res.series[c]);
     return !on_series || on_series(res.series[c]);
   });
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

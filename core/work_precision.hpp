@@ -2,6 +2,7 @@
 // Work-precision data: for each (integrator, method, differential) and each step size h, the CPU time of
 // the integration and its global error, so that speed can be charted against accuracy.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "integrate.hpp"
@@ -22,20 +23,33 @@ struct WorkPrecisionRequest {
   std::vector<WorkPrecisionChoice> choices{};
   std::vector<double> h{};  // default: 2^-2 .. 2^-7
   Predictor predictor = Predictor::lie_euler;  // where every stage's iteration starts (IntegrateRequest)
+  // Against tolerance instead of h: each choice runs with adaptive steps at rtol = atol = each tolerance, from the
+  // first step IntegrateRequest's default h (at most t_end), and at most max_steps tries per run (the server
+  // lowers it to share its step budget among the runs).
+  std::vector<double> tolerances{};
+  int max_steps = static_cast<int>(fields::max_steps.default_value);
 };
 
 struct WorkPrecisionPoint {
-  double h = 0;
+  double h = 0;            // fixed steps: the step size; adaptive: the mean accepted step, t_end / steps
+  std::optional<double> tolerance{};  // adaptive: the run's rtol = atol
+  int rejected = 0;        // adaptive: tries rejected
   double cpu_seconds = 0;  // minimum over repeated runs (short runs are repeated up to 5 ms of CPU time)
   double error = 0;
   Status status = Status::converged;
   int iterations = 0;  // total Newton/fixed-point iterations of the run
+  int substeps = 0;    // steps taken (more than t_end / h where halving kept the solution's branch)
+  InvariantValues drifts{};  // the run's invariant_drifts (IntegrateResult): the problem's invariants' drift
+  bool in_fit = false;   // one of the points the series' order is fitted from
+  std::string excluded;  // why the fit leaves it out (empty when in_fit)
 };
 
 struct WorkPrecisionSeries {
   WorkPrecisionChoice choice;
   std::vector<WorkPrecisionPoint> points;
-  // Least-squares slope of log error vs log h over the converged points (order_fit.hpp): the observed order.
+  // Least-squares slope of log error vs log h over the points in the asymptotic range (order_fit.hpp): the
+  // observed order. Only honest points enter: runs whose every stage kept the solution's branch. None against
+  // tolerance: adaptive runs' mean steps are no h an order is read from.
   std::optional<double> fitted_order;
 };
 

@@ -31,40 +31,20 @@ trap cleanup EXIT
 trap 'exit 0' INT TERM
 
 free_port() { python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])'; }
-upstreams=""
+upstreams=()
 for i in $(seq "$replicas"); do
   p=$(free_port)
-  # Every connection comes from nginx's address: the per-client cap is nginx's job (limit_conn) here.
-  "$server_bin" --host 127.0.0.1 --port "$p" --web-root "$root/web" --max-connections-per-client 512 \
+  # Every connection comes from nginx: its X-Real-IP names the client (long-work slots per client address).
+  "$server_bin" --host 127.0.0.1 --port "$p" --web-root "$root/web" --trusted-front 127.0.0.1 \
     >"$dir/replica-$i.log" 2>&1 &
   pids+=($!)
-  upstreams+="    server 127.0.0.1:$p max_fails=3 fail_timeout=5s;\n"
+  upstreams+=("127.0.0.1:$p")
   echo "run_local: replica $i on 127.0.0.1:$p (log $dir/replica-$i.log)"
 done
-# The shipped file with this run's ports: its listen line and its upstream server lines replaced.
-sed -e "s/^\(\s*listen\) [^;]*;/\1 127.0.0.1:$port;/" \
-    -e "/^\s*server 127\.0\.0\.1:[0-9]*.*;/d" \
-    -e "s/^\(\s*least_conn;.*\)$/\1\n$upstreams/" \
-    "$root/deploy/nginx/lienewton.conf" >"$dir/lienewton.conf"
-cat >"$dir/nginx.conf" <<CONF
-daemon off;
-worker_processes 2;
-pid $dir/nginx.pid;
-error_log $dir/error.log warn;
-events { worker_connections 4096; }
-http {
-  access_log off;
-  client_body_temp_path $dir/client_body;
-  proxy_temp_path $dir/proxy;
-  fastcgi_temp_path $dir/fastcgi;
-  uwsgi_temp_path $dir/uwsgi;
-  scgi_temp_path $dir/scgi;
-  include $dir/lienewton.conf;
-}
-CONF
-"$nginx_bin" -t -q -p "$dir" -c "$dir/nginx.conf"
+"$root/deploy/nginx/make_conf.sh" "$dir" "127.0.0.1:$port" "${upstreams[@]}"
+"$nginx_bin" -t -q -e "$dir/error.log" -p "$dir" -c "$dir/nginx.conf"
 echo "run_local: nginx on http://127.0.0.1:$port/ in front of $replicas replicas (config $dir/lienewton.conf)"
-"$nginx_bin" -p "$dir" -c "$dir/nginx.conf" &
+"$nginx_bin" -e "$dir/error.log" -p "$dir" -c "$dir/nginx.conf" &
 pids+=($!)
 wait -n "${pids[@]}"
 echo "run_local: a process exited; stopping"

@@ -12,21 +12,40 @@ void Canvas::quad(const Point (&corners)[4], const float (&uv)[4], Color color, 
   const float us[4] = {uv[0], uv[2], uv[2], uv[0]};
   const float vs[4] = {uv[1], uv[1], uv[3], uv[3]};
   for (int i : {0, 1, 2, 0, 2, 3}) {
-    vertices_.push_back({corners[i].x, corners[i].y, us[i], vs[i], color, a.x, a.y, b.x, b.y, half_width});
+    vertices_.push_back({corners[i].x, corners[i].y + dy_, us[i], vs[i], color, a.x, a.y + dy_, b.x, b.y + dy_, half_width});
   }
 }
 
 void Canvas::rect(float x0, float y0, float x1, float y1, Color color) {
+  Shape s;
+  s.a = {x0, y0 + dy_};
+  s.b = {x1, y1 + dy_};
+  s.color = color;
+  shapes_.push_back(std::move(s));
   const float u = font_.solid_u(), v = font_.solid_v();
   quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {u, v, u, v}, color, {}, {}, 0);
 }
 
 void Canvas::triangle(Point a, Point b, Point c, Color color) {
+  Shape s;
+  s.kind = Shape::Kind::triangle;
+  s.a = {a.x, a.y + dy_};
+  s.b = {b.x, b.y + dy_};
+  s.c = {c.x, c.y + dy_};
+  s.color = color;
+  shapes_.push_back(std::move(s));
   const float u = font_.solid_u(), v = font_.solid_v();
-  for (const Point& p : {a, b, c}) vertices_.push_back({p.x, p.y, u, v, color, 0, 0, 0, 0, 0});
+  for (const Point& p : {a, b, c}) vertices_.push_back({p.x, p.y + dy_, u, v, color, 0, 0, 0, 0, 0});
 }
 
 void Canvas::line(Point a, Point b, float width, Color color) {
+  Shape s;
+  s.kind = Shape::Kind::line;
+  s.a = {a.x, a.y + dy_};
+  s.b = {b.x, b.y + dy_};
+  s.width = width;
+  s.color = color;
+  shapes_.push_back(std::move(s));
   const float half = 0.5f * width;
   const float pad = half + 1.0f;  // room for the antialiased fringe and the round caps
   float dx = b.x - a.x, dy = b.y - a.y;
@@ -48,6 +67,14 @@ void Canvas::line(Point a, Point b, float width, Color color) {
 }
 
 void Canvas::text(std::string_view text, float x, float y, TextSize size, Color color, Align align) {
+  Shape s;
+  s.kind = Shape::Kind::text;
+  s.a = {x, y + 0.5f * font_.cap_height(size) + dy_};
+  s.color = color;
+  s.text = std::string(text);
+  s.size = size;
+  s.align = align;
+  shapes_.push_back(std::move(s));
   if (align != Align::left) {
     const float w = font_.width(text, size);
     x -= align == Align::center ? 0.5f * w : w;

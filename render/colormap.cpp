@@ -38,7 +38,10 @@ Color status_color(Status status) {
     case Status::off_branch: return {247, 182, 210, 255};          // pink
     case Status::local_minimum: return {188, 189, 34, 255};        // olive
     case Status::no_descent: return {107, 110, 207, 255};          // slate blue
+    case Status::fold: return {255, 217, 47, 255};                 // yellow
     case Status::cancelled: return {120, 120, 120, 255};           // mid gray: not computed
+    case Status::min_step: return {31, 120, 180, 255};             // blue
+    case Status::max_steps: return {178, 223, 138, 255};           // light green
   }
   return kNoValueColor;
 }

@@ -94,6 +94,7 @@ Font::Font() : atlas_(static_cast<std::size_t>(kAtlasWidth) * kAtlasHeight, 0), 
   auto keep = [&](Face& face, float pixels, const stbtt_packedchar* chars) {
     face.pixel_height = pixels;
     face.cap_height = static_cast<float>(cap_y1) * stbtt_ScaleForPixelHeight(&info, pixels);
+    face.em_size = stbtt_ScaleForPixelHeight(&info, pixels) / stbtt_ScaleForMappingEmToPixels(&info, 1);
     for (int i = 0; i < kGlyphCount; ++i) {
       const stbtt_packedchar& c = chars[i];
       face.chars[i] = {c.x0, c.y0, c.x1, c.y1, c.xoff, c.yoff, c.xadvance};
@@ -119,6 +120,7 @@ bool Font::has_glyph(char32_t c) const { return c == U'?' || glyph_index(c) != '
 
 float Font::pixel_height(TextSize size) const { return face(size).pixel_height; }
 float Font::cap_height(TextSize size) const { return face(size).cap_height; }
+float Font::em_size(TextSize size) const { return face(size).em_size; }
 
 float Font::width(std::string_view text, TextSize size) const {
   float w = 0;

@@ -17,9 +17,9 @@ struct GlyphQuad {
   float u0, v0, u1, v1;  // atlas texture coordinates
 };
 
-// Beyond ASCII, sorted: ² ³ · ¹ × π ᵀ ᵏ ‖ … ⁰ ⁴-⁹ ⁻ ₀-₉ ₙ − ≈ ≠ ≤ ≥.
+// Beyond ASCII, sorted: ² ³ µ · ¹ × π ᵀ ᵏ ‖ … ⁰ ⁴-⁹ ⁻ ₀-₉ ₙ − ≈ ≠ ≤ ≥.
 inline constexpr char32_t kExtraCodepoints[] = {
-    0x00B2, 0x00B3, 0x00B7, 0x00B9, 0x00D7, 0x03C0, 0x1D40, 0x1D4F, 0x2016, 0x2026, 0x2070, 0x2074, 0x2075,
+    0x00B2, 0x00B3, 0x00B5, 0x00B7, 0x00B9, 0x00D7, 0x03C0, 0x1D40, 0x1D4F, 0x2016, 0x2026, 0x2070, 0x2074, 0x2075,
     0x2076, 0x2077, 0x2078, 0x2079, 0x207B, 0x2080, 0x2081, 0x2082, 0x2083, 0x2084, 0x2085, 0x2086, 0x2087,
     0x2088, 0x2089, 0x2099, 0x2212, 0x2248, 0x2260, 0x2264, 0x2265};
 
@@ -40,6 +40,7 @@ class Font {
 
   float pixel_height(TextSize size) const;
   float cap_height(TextSize size) const;  // height of 'H' above the baseline, for centering
+  float em_size(TextSize size) const;     // the font size a vector copy (SVG) gives for the same glyph sizes
   float width(std::string_view text, TextSize size) const;
   // Whether the atlas holds a glyph of the font for c (else c prints as '?').
   bool has_glyph(char32_t c) const;
@@ -59,6 +60,7 @@ class Font {
   struct Face {
     float pixel_height = 0;
     float cap_height = 0;
+    float em_size = 0;
     Baked chars[kGlyphCount];  // ASCII from kFirstChar, then kExtraCodepoints
   };
   Font();

@@ -52,7 +52,7 @@ std::array<int, 3> back_to_front(const Camera& camera, const Eigen::Matrix3d& fr
 
 void legend(Canvas& canvas) {
   const float x = 10, line_height = 17;
-  float y = canvas.height() - 10 - 2 * line_height;
+  float y = canvas.scene_height() - 10 - 2 * line_height;
   const Color gray{110, 110, 110, 255};
   dashed(canvas, {x, y}, {x + 24, y}, 2.0f, gray);
   canvas.text("start z", x + 32, y, TextSize::small, kTextColor);
@@ -105,7 +105,8 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
       canvas.line(origin, camera.project(last.col(axis)), kFinalAxisWidth, kAxisColors[axis]);
       // Label just beyond the tip, pushed outward from the origin.
       const Point tip = camera.project(1.13 * last.col(axis));
-      static constexpr const char* kNames[3] = {"x", "y", "z"};
+      // The frame's axes y e_k, not the space's x, y, z (z is the start point, as in the legend).
+      static constexpr const char* kNames[3] = {"e\u2081", "e\u2082", "e\u2083"};
       canvas.text(kNames[axis], tip.x, tip.y, TextSize::large, kAxisColors[axis], Align::center);
     }
   }

@@ -152,7 +152,8 @@ HeatmapLayout layout_heatmap(const HeatmapGrid& grid, HeatmapMetric metric, int 
   if (width == 0 || height == 0) {
     // Square cells sized so that a typical grid fills about 600 pixels across.
     const int cell = std::clamp(600 / std::max(cell_columns, l.rows), kAutoCellMin, kAutoCellMax);
-    l.cell_width = l.cell_height = cell;
+    l.cell_width = cell;
+    l.cell_height = std::max(cell, small);  // tall enough to label every N
   }
   if (width == 0) {
     width = fixed_width + cell_columns * l.cell_width;

@@ -161,6 +161,21 @@ void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayo
   for (const auto& s : chart.series) {
     for (std::size_t i = 0; i < s.x.size(); ++i) draw_marker(canvas, l.project(s.x[i], s.y[i]), s.style);
   }
+  std::vector<Box> labelled;  // coinciding series share their labels rather than print them over each other
+  const float label_height = Font::instance().pixel_height(TextSize::small);
+  for (const auto& s : chart.series) {
+    for (std::size_t i = 0; i < s.point_labels.size() && i < s.x.size(); ++i) {
+      const Point p = l.project(s.x[i], s.y[i]);
+      const float w = Font::instance().width(s.point_labels[i], TextSize::small);
+      const Box box{p.x - 0.5f * w, p.y - 9 - label_height, p.x + 0.5f * w, p.y - 9};
+      const bool covers = std::any_of(labelled.begin(), labelled.end(), [&](const Box& b) {
+        return box.x0 < b.x1 && b.x0 < box.x1 && box.y0 < b.y1 && b.y0 < box.y1;
+      });
+      if (covers) continue;
+      labelled.push_back(box);
+      canvas.text(s.point_labels[i], p.x, 0.5f * (box.y0 + box.y1), TextSize::small, s.style.color, Align::center);
+    }
+  }
   if (chart.legend != LegendPlace::none) draw_legend(canvas, chart, l);
 }
 

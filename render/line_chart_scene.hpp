@@ -25,6 +25,8 @@ struct LineSeries {
   std::string label;
   SeriesStyle style;
   std::vector<double> x, y;  // same length; finite, and positive on a log axis; may be empty (legend only)
+  // A small label beside each marker (e.g. its h), or none; a label that would cover one drawn before is left out.
+  std::vector<std::string> point_labels;
 };
 
 enum class LegendPlace { none, inside, right };

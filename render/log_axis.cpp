@@ -76,13 +76,27 @@ std::vector<AxisTick> linear_ticks(double lo, double hi, float pixels, float min
   return ticks;
 }
 
+std::string power_of_two_label(double x) {
+  const double k = std::log2(x);
+  if (!(x > 0) || k != std::round(k) || std::abs(k) > 99) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+  }
+  static constexpr const char* kDigits[] = {"\u2070", "\u00b9", "\u00b2", "\u00b3", "\u2074",
+                                            "\u2075", "\u2076", "\u2077", "\u2078", "\u2079"};
+  std::string out = k < 0 ? "2\u207b" : "2";
+  for (char d : std::to_string(static_cast<int>(std::abs(k)))) out += kDigits[d - '0'];
+  return out;
+}
+
 std::string tick_label(double value, AxisUnit unit) {
   char text[32];
   if (unit == AxisUnit::seconds && value != 0) {
     static constexpr struct {
       double scale;
       const char* suffix;
-    } kUnits[] = {{1.0, "s"}, {1e-3, "ms"}, {1e-6, "us"}, {1e-9, "ns"}};
+    } kUnits[] = {{1.0, "s"}, {1e-3, "ms"}, {1e-6, "\u00b5s"}, {1e-9, "ns"}};
     for (const auto& u : kUnits) {
       if (std::fabs(value) >= u.scale * (1 - 1e-9) || u.scale == 1e-9) {
         std::snprintf(text, sizeof text, "%g %s", value / u.scale, u.suffix);

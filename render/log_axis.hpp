@@ -22,5 +22,7 @@ std::vector<AxisTick> linear_ticks(double lo, double hi, float pixels, float min
 
 // "0.01", "100", "1e-08" -> "1e-8", "2e+06" -> "2e6"; with unit seconds "10 us", "1.5 ms", "2 s".
 std::string tick_label(double value, AxisUnit unit);
+// A step size as typeset: "2⁻³" where x is a power of two, else "%g" ("0.3").
+std::string power_of_two_label(double x);
 
 }  // namespace lienewton::render

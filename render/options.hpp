@@ -10,6 +10,9 @@ namespace lienewton::render {
 inline constexpr int kMinImageSize = 64;
 inline constexpr int kMaxImageSize = 4096;
 
+// A picture as PNG pixels, or as an SVG document (svg.hpp: its text and lines stay vectors).
+enum class ImageFormat { png, svg };
+
 struct FramesOptions {
   int width = 512;
   int height = 512;

@@ -1,5 +1,6 @@
 #include "render/renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
@@ -13,6 +14,7 @@
 #include "render/heatmap_scene.hpp"
 #include "render/painter.hpp"
 #include "render/png.hpp"
+#include "render/svg.hpp"
 
 namespace lienewton::render {
 namespace {
@@ -42,6 +44,8 @@ struct Worker {
     }
   }
 };
+
+std::vector<unsigned char> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
 
 }  // namespace
 
@@ -111,46 +115,81 @@ Renderer::Renderer(int workers, int rasterizer_threads) {
 Renderer::~Renderer() = default;
 
 std::vector<unsigned char> Renderer::frames_png(const std::vector<Eigen::Matrix3d>& frames,
-                                                const Eigen::Matrix3d& start, const FramesOptions& options) {
+                                                const Eigen::Matrix3d& start, const FramesOptions& options,
+                                                const Caption& caption, ImageFormat format) {
   validate_size("width", options.width, false);
   validate_size("height", options.height, false);
   if (!std::isfinite(options.azimuth_deg)) throw std::invalid_argument("azimuth_deg must be finite");
   if (!std::isfinite(options.elevation_deg)) throw std::invalid_argument("elevation_deg must be finite");
   // The scene is built before a worker is borrowed and encoded after it is returned: only drawing holds one.
+  // The caption takes a band of the given height; the sphere keeps at least the smallest picture's room.
+  const Caption shown = caption_height(caption, options.width) <= options.height - kMinImageSize ? caption : Caption{};
   Canvas canvas(options.width, options.height, kWhite);
-  draw_frames(canvas, Camera(options.azimuth_deg, options.elevation_deg, options.width, options.height), frames,
-              start);
+  draw_caption(canvas, shown);
+  draw_frames(canvas, Camera(options.azimuth_deg, options.elevation_deg, options.width,
+                             static_cast<int>(canvas.scene_height())), frames, start);
+  if (format == ImageFormat::svg) return bytes_of(to_svg(canvas));
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
   return encode_png(rgb, options.width, options.height, RowOrder::bottom_up);
 }
 
-std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options) {
+std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,
+                                                 const Caption& caption, ImageFormat format) {
   validate_size("width", options.width, true);
   validate_size("height", options.height, true);
   const HeatmapGrid grid = make_grid(sweep);
-  const HeatmapLayout layout = layout_heatmap(grid, options.metric, options.width, options.height);
-  Canvas canvas(layout.width, layout.height, kWhite);
+  const int band = caption_height(caption, options.width == 0 ? 600 : options.width);
+  const int height = options.height == 0 ? 0 : std::max(kMinImageSize, options.height - band);
+  const HeatmapLayout layout = layout_heatmap(grid, options.metric, options.width, height);
+  // An automatic width is known only now: the band for it.
+  const int total = layout.height + caption_height(caption, layout.width);
+  Canvas canvas(layout.width, total, kWhite);
+  draw_caption(canvas, caption);
   draw_heatmap(canvas, grid, layout, options.metric);
+  if (format == ImageFormat::svg) return bytes_of(to_svg(canvas));
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
-  return encode_png(rgb, layout.width, layout.height, RowOrder::bottom_up);
+  return encode_png(rgb, layout.width, total, RowOrder::bottom_up);
 }
 
-std::vector<unsigned char> Renderer::basins_png(const lienewton::BasinResult& map, int width, int height) {
+std::vector<unsigned char> Renderer::basins_png(const lienewton::BasinResult& map, int width, int height,
+                                                const Caption& caption, ImageFormat format) {
   validate_size("width", width, true);
   validate_size("height", height, true);
-  const BasinLayout layout = layout_basins(map, width, height);
-  Canvas canvas(layout.width, layout.height, kWhite);
+  const int band = caption_height(caption, width == 0 ? 600 : width);
+  const BasinLayout layout = layout_basins(map, width, height == 0 ? 0 : std::max(kMinImageSize, height - band));
+  const int total = layout.height + caption_height(caption, layout.width);
+  Canvas canvas(layout.width, total, kWhite);
+  draw_caption(canvas, caption);
   draw_basin_decorations(canvas, map, layout);
-  std::vector<std::uint8_t> rgb = pool_->paint(canvas);
+  // Rows bottom-up: the band is at the end, so the panels' rows count from the bottom as the layout's do.
+  if (format == ImageFormat::png) {
+    std::vector<std::uint8_t> rgb = pool_->paint(canvas);
+    fill_basin_panels(rgb, map, layout);
+    return encode_png(rgb, layout.width, total, RowOrder::bottom_up);
+  }
+  // SVG: the panels' pixels as one embedded PNG each, over the vector decorations' background.
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(layout.width) * total * 3, 255);
   fill_basin_panels(rgb, map, layout);
-  return encode_png(rgb, layout.width, layout.height, RowOrder::bottom_up);
+  std::vector<SvgImage> panels;
+  const int size = layout.panel_size, top = total - layout.height + layout.top;
+  for (int p = 0; p < layout.panels; ++p) {
+    std::vector<std::uint8_t> crop;
+    for (int y = top; y < top + size; ++y) {
+      const auto* row = rgb.data() + (static_cast<std::size_t>(total - 1 - y) * layout.width + layout.panel_x(p)) * 3;
+      crop.insert(crop.end(), row, row + static_cast<std::size_t>(size) * 3);
+    }
+    panels.push_back({static_cast<float>(layout.panel_x(p)), static_cast<float>(top), static_cast<float>(size),
+                      static_cast<float>(size), encode_png(crop, size, size, RowOrder::top_down)});
+  }
+  return bytes_of(to_svg(canvas, panels));
 }
 
-std::vector<unsigned char> Renderer::figure_png(const Figure& figure) {
+std::vector<unsigned char> Renderer::figure_png(const Figure& figure, ImageFormat format) {
   validate_size("width", figure.width, false);
   validate_size("height", figure.height, false);
   Canvas canvas(figure.width, figure.height, kWhite);
   draw_figure(canvas, figure);
+  if (format == ImageFormat::svg) return bytes_of(to_svg(canvas));
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
   return encode_png(rgb, figure.width, figure.height, RowOrder::bottom_up);
 }

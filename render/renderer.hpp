@@ -1,12 +1,13 @@
 #pragma once
 // The render service's entry point: PNGs of rotation frames and of convergence heatmaps, drawn offscreen
-// with OpenGL (OSMesa or EGL, see gl_context.hpp).
+// with OpenGL (OSMesa or EGL, see gl_context.hpp), or each picture as SVG (format svg, no GL needed).
 #include <Eigen/Dense>
 #include <memory>
 #include <vector>
 
 #include "core/basins.hpp"
 #include "core/sweep.hpp"
+#include "render/caption.hpp"
 #include "render/figure.hpp"
 #include "render/options.hpp"
 #include "render/render_unavailable.hpp"
@@ -28,12 +29,16 @@ class Renderer {
 
   // frames: y_0, y_1, ... (iterates or a trajectory), the last drawn bold; start: the point z, dashed.
   std::vector<unsigned char> frames_png(const std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start,
-                                        const FramesOptions& options);
-  std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options);
+                                        const FramesOptions& options, const Caption& caption = {},
+                                        ImageFormat format = ImageFormat::png);
+  // caption: a band above the picture (caption.hpp); a given height includes it.
+  std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,
+                                         const Caption& caption = {}, ImageFormat format = ImageFormat::png);
   // Basin map (basin_scene.hpp); width/height 0 choose the size. Throws std::invalid_argument for an empty map.
-  std::vector<unsigned char> basins_png(const lienewton::BasinResult& map, int width, int height);
+  std::vector<unsigned char> basins_png(const lienewton::BasinResult& map, int width, int height,
+                                        const Caption& caption = {}, ImageFormat format = ImageFormat::png);
   // Line-chart figures (work_precision_scene.hpp, residuals_scene.hpp); throws as layout_line_chart does.
-  std::vector<unsigned char> figure_png(const Figure& figure);
+  std::vector<unsigned char> figure_png(const Figure& figure, ImageFormat format = ImageFormat::png);
 
  private:
   class Pool;

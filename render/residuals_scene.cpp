@@ -13,7 +13,7 @@ namespace {
 
 constexpr float kTimePanelShare = 0.42f;  // the time panel has no legend column, so it needs less width
 
-// Three significant digits: "958 us", not "957.998 us".
+// Three significant digits: "958 µs", not "957.998 µs".
 std::string time_text(double seconds) {
   char rounded[32];
   std::snprintf(rounded, sizeof rounded, "%.3g", seconds);
@@ -49,8 +49,8 @@ Figure residuals_scene(const std::vector<ResidualRun>& runs, const std::string& 
     if (run.cpu_seconds.size() != run.residual.size() || run.residual.empty()) {
       throw std::invalid_argument("a residual run needs one CPU time per residual, and at least one");
     }
-    LineSeries timed{.label = {}, .style = series_style(i), .x = {}, .y = {}};
-    LineSeries counted{.label = legend_label(run), .style = series_style(i), .x = {}, .y = {}};
+    LineSeries timed{.label = {}, .style = series_style(i), .x = {}, .y = {}, .point_labels = {}};
+    LineSeries counted{.label = legend_label(run), .style = series_style(i), .x = {}, .y = {}, .point_labels = {}};
     for (std::size_t n = 0; n < run.residual.size(); ++n) {
       if (!(run.residual[n] > 0) || !std::isfinite(run.residual[n])) continue;
       counted.x.push_back(static_cast<double>(n));

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/fields.hpp"
+#include "render/log_axis.hpp"
 #include "render/options.hpp"
 #include "render/short_names.hpp"
 
@@ -14,8 +16,16 @@ bool drawable(const WorkPrecisionPoint& p) {
   return p.status == Status::converged && p.error > 0 && p.cpu_seconds > 0;
 }
 
-// "Euler, Newton group, exact  p = 1.01 (2 of 6 failed)"
-std::string legend_label(const WorkPrecisionSeries& s, std::size_t failed) {
+// Against tolerance: every point of the result is an adaptive run (work_precision.hpp).
+bool against_tolerance(const WorkPrecisionResult& result) {
+  for (const auto& s : result.series)
+    for (const auto& p : s.points)
+      if (p.tolerance) return true;
+  return false;
+}
+
+// "Euler, Newton group, exact  p = 1.01 (2 of 6 failed)"; against tolerance without the order.
+std::string legend_label(const WorkPrecisionSeries& s, std::size_t failed, bool tolerance) {
   std::string label = series_name(s.choice.integrator, s.choice.method, s.choice.differential);
   char order[32];
   if (s.fitted_order) {
@@ -23,7 +33,7 @@ std::string legend_label(const WorkPrecisionSeries& s, std::size_t failed) {
   } else {
     std::snprintf(order, sizeof order, "  p = -");
   }
-  label += order;
+  if (!tolerance) label += order;
   if (failed > 0) label += " (" + std::to_string(failed) + " of " + std::to_string(s.points.size()) + " failed)";
   return label;
 }
@@ -38,7 +48,9 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
   chart.x = {.label = "global error \u2016y_N \u2212 y(t_end)\u2016", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
   chart.y = {.label = "solver CPU time", .scale = AxisScale::log, .unit = AxisUnit::seconds, .min_step = 0};
   chart.legend = LegendPlace::right;
-  chart.legend_title = "markers: h, largest first; p: fitted order";
+  const bool tolerance = against_tolerance(result);
+  chart.legend_title = tolerance ? "adaptive steps; markers labelled with the tolerance (rtol = atol)"
+                                 : "markers labelled with h; p: fitted order";
   bool any = false;
   for (std::size_t i = 0; i < result.series.size(); ++i) {
     const WorkPrecisionSeries& s = result.series[i];
@@ -46,13 +58,17 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
     for (const auto& p : s.points) {
       if (drawable(p)) points.push_back(&p);
     }
-    std::stable_sort(points.begin(), points.end(), [](const auto* a, const auto* b) { return a->h > b->h; });
+    // Along decreasing h, or decreasing tolerance.
+    std::stable_sort(points.begin(), points.end(), [](const auto* a, const auto* b) {
+      return a->tolerance && b->tolerance ? *a->tolerance > *b->tolerance : a->h > b->h;
+    });
     LineSeries line;
-    line.label = legend_label(s, s.points.size() - points.size());
+    line.label = legend_label(s, s.points.size() - points.size(), tolerance);
     line.style = series_style(i);
     for (const auto* p : points) {
       line.x.push_back(p->error);
       line.y.push_back(p->cpu_seconds);
+      line.point_labels.push_back(p->tolerance ? fields::format_bound(*p->tolerance) : power_of_two_label(p->h));
     }
     any = any || !points.empty();
     chart.series.push_back(std::move(line));

@@ -8,8 +8,8 @@
 #   grid          Version 1 plain, with line search / trust region, with and without the watchdog         (~3 min)
 #   basins        the share of starts that converge, paper-linear N = 3, 128 x 128, h = 0.5, 4, 32       (~3 min)
 #   predictors    integration iterations without and with the Lie-Euler predictor                        (seconds)
-#   continuation  Version 1 with continuation, alone and globalised                      (~30 min CPU; FD most of it)
-#   restarts      line search + continuation with 1000 restarts, paper-linear                  (~15 min CPU)
+#   branches      which root: Version 1 plain and continued on the paper's grid, by branch and status; the
+#                 path's cost per continued solve (median path points, CPU)                            (~3 min)
 # Counts are exact for the binary that produced them; long erratic runs of ≥ 16 iterations change class with the
 # last bits of rounding (another compiler, -DLIENEWTON_NATIVE=OFF, another CPU), so another build may differ.
 set -euo pipefail
@@ -20,7 +20,7 @@ lienewton="$bin/lienewton"
 [ -x "$lienewton" ] || { echo "experiments: no $lienewton (build the lienewton target, or pass --bin DIR)" >&2; exit 2; }
 command -v jq >/dev/null || { echo "experiments: jq is needed (apt-get install jq)" >&2; exit 2; }
 sections=("$@")
-[ ${#sections[@]} -gt 0 ] || sections=(figures grid basins predictors continuation restarts)
+[ ${#sections[@]} -gt 0 ] || sections=(figures grid basins predictors branches)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -36,7 +36,7 @@ header() {  # title
 # A status's one-letter code, as `lienewton figures` prints it.
 jq_codes='def code: {"max_iterations":"M","diverged":"D","non_finite":"F","left_log_domain":"L",
   "singular_differential":"X","stagnated":"S","off_branch":"B","local_minimum":"P","no_descent":"N",
-  "cancelled":"-"}[.];
+  "fold":"T","cancelled":"-"}[.];
 def failures: [.[] | select(.status != "converged") | .status] | group_by(.) | map("\(.[0] | code) \(length)")
   | join(", ");
 def converged: map(select(.status == "converged")) | length;'
@@ -107,20 +107,32 @@ grid() {
     '"globalization":"trust-region"' '"globalization":"trust-region","watchdog":true'
 }
 
-continuation() {
-  header "Continued Version 1 on the paper's grid: converged cells of 294"
-  echo "| problem | differential | plain | continuation | line search + continuation | trust region + continuation |"
-  echo "|---|---|---|---|---|---|"
-  variant_rows '"continuation":true' '"globalization":"line-search","continuation":true' \
-    '"globalization":"trust-region","continuation":true'
-}
-
-restarts() {
-  header "Line search + continuation with 1000 restarts, Version 1: converged cells of 294"
-  echo "| problem | differential | plain | line search + continuation + 1000 restarts |"
-  echo "|---|---|---|---|"
-  local problems=(paper-linear)  # paper-sine converges on every cell before the restarts (continuation section)
-  variant_rows '"globalization":"line-search","continuation":true,"restarts":1000'
+branches() {
+  header "Which root, Version 1 (exact) on the paper's grid (N = 2..15, h = 2^-10..2^10, seed 1): cells by branch and status"
+  echo "| problem | search | cells | continued | other | unchecked | by status | median path points | median CPU per solve |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  local problem search n k
+  for problem in paper-linear paper-sine; do
+    for search in plain continuation; do
+      local cont=false
+      [ "$search" = continuation ] && cont=true
+      : > "$tmp/cells.ndjson"
+      for n in $(seq 2 15); do
+        for k in $(seq -10 10); do
+          echo "{\"problem\":\"$problem\",\"n\":$n,\"h\":$(awk "BEGIN{print 2^$k}"),\"differential\":\"exact\",\"continuation\":$cont}" |
+            nice -n 10 "$lienewton" solve |
+            jq -c '{status, branch, cpu: .cpu_seconds, points: ((.continuation.stages // []) | map(select(.kind == "path")) | length)}' \
+              >> "$tmp/cells.ndjson"
+        done
+      done
+      jq -rs --arg p "$problem" --arg s "$search" '
+        def median: sort | if length == 0 then 0 else .[length / 2 | floor] end;
+        def count(b): map(select(.branch == b)) | length;
+        "| \($p) | \($s) | \(length) | \(count("continued")) | \(count("other")) | \(count("unchecked")) | " +
+        (group_by(.status) | map("\(.[0].status) \(length)") | join(", ")) +
+        " | \(map(.points) | median) | \(map(.cpu) | median * 1e6 | round) µs |"' "$tmp/cells.ndjson"
+    done
+  done
 }
 
 basins() {
@@ -130,12 +142,7 @@ basins() {
     "V1 line search + watchdog|newton-group|\"globalization\":\"line-search\",\"watchdog\":true,"
     "V1 trust region|newton-group|\"globalization\":\"trust-region\","
     "V1 trust region + watchdog|newton-group|\"globalization\":\"trust-region\",\"watchdog\":true,"
-    "V1 + cont|newton-group|\"continuation\":true,"
-    "V1 line search + cont|newton-group|\"globalization\":\"line-search\",\"continuation\":true,"
-    "V1 trust region + cont|newton-group|\"globalization\":\"trust-region\",\"continuation\":true,"
     "V2|newton-algebra|" "V2 line search|newton-algebra|\"globalization\":\"line-search\","
-    "V2 + cont|newton-algebra|\"continuation\":true,"
-    "V2 line search + cont|newton-algebra|\"globalization\":\"line-search\",\"continuation\":true,"
     "fixed point|fixed-point|")
   local line="| h" rule="|---" c h
   for c in "${cols[@]}"; do line+=" | ${c%%|*}"; rule+="|---"; done
@@ -180,7 +187,7 @@ predictors() {
 
 for section in "${sections[@]}"; do
   case "$section" in
-    figures | grid | basins | predictors | continuation | restarts) "$section" ;;
+    figures | grid | basins | predictors | branches) "$section" ;;
     *) echo "experiments: unknown section $section" >&2; exit 2 ;;
   esac
 done

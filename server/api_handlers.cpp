@@ -20,23 +20,26 @@
 namespace lienewton::service {
 
 // A work slot: long requests beyond options.effective_max_streams() are refused, so that workers stay free
-// for /livez and the queue of cpp-httplib (unbounded) never fills with solves.
+// for short requests, and beyond max_streams_per_client() from one client address, so that one client cannot
+// take every slot.
 class ApiHandlers::Slot {
  public:
-  Slot(std::atomic<int>& in_use, Metrics& metrics) : in_use_(in_use), metrics_(metrics) { metrics_.work_started(); }
+  Slot(ApiHandlers& owner, std::string client) : owner_(owner), client_(std::move(client)) { owner_.metrics_.work_started(); }
   ~Slot() {
-    if (streaming_) metrics_.stream_finished();
-    metrics_.work_finished();
-    --in_use_;
+    if (streaming_) owner_.metrics_.stream_finished();
+    owner_.metrics_.work_finished();
+    const std::lock_guard<std::mutex> lock(owner_.slots_mutex_);
+    --owner_.slots_in_use_;
+    if (--owner_.slots_per_client_[client_] == 0) owner_.slots_per_client_.erase(client_);
   }
   void mark_streaming() {
     streaming_ = true;
-    metrics_.stream_started();
+    owner_.metrics_.stream_started();
   }
 
  private:
-  std::atomic<int>& in_use_;
-  Metrics& metrics_;
+  ApiHandlers& owner_;
+  std::string client_;
   bool streaming_ = false;
 };
 
@@ -70,26 +73,35 @@ HttpResponse json_response(std::string body, int status = 200) {
 ApiHandlers::ApiHandlers(const ServerOptions& options, Metrics& metrics, const std::atomic<bool>& draining,
                          const std::atomic<bool>& abort_work)
     : options_(options), metrics_(metrics), draining_(draining), abort_work_(abort_work),
-      openapi_document_(openapi_document()),
+      openapi_document_(openapi_document(options)),
       renderer_(std::make_unique<render::Renderer>(options.render_workers)) {}
 
 ApiHandlers::~ApiHandlers() = default;
 
-std::shared_ptr<ApiHandlers::Slot> ApiHandlers::acquire_slot() {
-  int current = slots_in_use_.load();
-  do {
-    if (current >= options_.effective_max_streams()) {
+std::shared_ptr<ApiHandlers::Slot> ApiHandlers::acquire_slot(const HttpRequest& req) {
+  {
+    const std::lock_guard<std::mutex> lock(slots_mutex_);
+    if (slots_in_use_.load() >= options_.effective_max_streams()) {
       metrics_.rejected("over_capacity");
       throw ApiError(503, "over_capacity", "", "the server is at its limit of concurrent long requests; retry shortly");
     }
-  } while (!slots_in_use_.compare_exchange_weak(current, current + 1));
-  return std::make_shared<Slot>(slots_in_use_, metrics_);
+    auto found = slots_per_client_.find(req.client);
+    if (found != slots_per_client_.end() && found->second >= options_.max_streams_per_client()) {
+      metrics_.rejected("client_over_capacity");
+      throw ApiError(429, "client_over_capacity", "",
+                     "this client already runs " + std::to_string(found->second) +
+                         " long requests, its limit; retry when one has finished");
+    }
+    ++slots_in_use_;
+    ++slots_per_client_[req.client];
+  }
+  return std::make_shared<Slot>(*this, req.client);
 }
 
-std::shared_ptr<CancellationToken> ApiHandlers::make_token(const HttpRequest& req, double budget_seconds) const {
+std::shared_ptr<CancellationToken> ApiHandlers::make_token(double budget_seconds) const {
   const auto timeout = std::chrono::duration_cast<CancellationToken::Clock::duration>(
       std::chrono::duration<double>(budget_seconds));
-  return std::make_shared<CancellationToken>(CancellationToken::Clock::now() + timeout, &abort_work_, req.client_gone,
+  return std::make_shared<CancellationToken>(CancellationToken::Clock::now() + timeout, &abort_work_, nullptr,
                                              budget_seconds);
 }
 
@@ -127,7 +139,7 @@ ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
   return [this, request](const Emit& emit, const CancellationToken& token) {
     SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
       progress(t.iteration);
-      if (emit && !emit("iteration", to_json(t, request.solver.include_iterates))) return false;
+      if (emit && !emit(t.path_point ? "path_point" : "iteration", to_json(t, request.solver.include_iterates))) return false;
       return !token.cancelled();
     });
     metrics_.solve_finished(std::string(to_string(result.status)), result.iterations);
@@ -198,6 +210,7 @@ ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
 ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
   IntegrateRequest request = integrate_request_from_json(body, options_.limits);
   validate(request);
+  fit_output(request, options_.output);
   check_output(request, options_.output);
   return [this, request](const Emit& emit, const CancellationToken& token) {
     bool stopped = false;
@@ -244,17 +257,9 @@ HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
   return serve(req, work_precision_job(request_json(req)), false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
-// The heatmap's GET form carries a sweep request, whose methods/n/h are lists.
-// Without n and h it would be the paper's full 882-cell finite-difference sweep: an <img> must ask for it.
+// The heatmap's GET form carries a sweep request, whose methods/n/h are lists; absent ones take the defaults
+// POST takes (the paper's grid), under the same sweep deadline.
 HttpResponse ApiHandlers::render_heatmap(const HttpRequest& req) {
-  if (req.method != "POST") {
-    for (const char* field : {"n", "h"}) {
-      if (!req.params.count(field)) {
-        throw ApiError(400, "missing_field", field, std::string("GET /api/v1/render/heatmap needs the ") + field +
-                                                        " parameter (a list of values)");
-      }
-    }
-  }
   return render(req, request_json(req, list_fields(fields::sweep | fields::render_heatmap)), service::render_heatmap, options_.sweep_timeout);
 }
 // The GET form of a basin map: methods, b1 and b2 are lists.
@@ -264,6 +269,9 @@ HttpResponse ApiHandlers::render_basins(const HttpRequest& req) {
 // The GET form carries choices as JSON text: choices=[{"integrator":...,"method":...,"differential":...}].
 HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
   return render(req, request_json(req, list_fields(fields::work_precision | fields::render_work_precision)), service::render_work_precision, options_.request_timeout);
+}
+HttpResponse ApiHandlers::render_invariants(const HttpRequest& req) {
+  return render(req, request_json(req, list_fields(fields::integrate | fields::render_invariants)), service::render_invariants, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
   return render(req, request_json(req, list_fields(fields::solve | fields::render_residuals)), service::render_residuals, options_.request_timeout);
@@ -294,9 +302,9 @@ HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
 HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse, double budget_seconds) {
-  auto slot = acquire_slot();
+  auto slot = acquire_slot(req);
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
-  const auto token = make_token(req, budget_seconds);
+  const auto token = make_token(budget_seconds);
   if (sse || ndjson) return stream(std::move(slot), std::move(job), sse, token);
   return json_response(dump(run(job, Emit{}, *token)));
 }
@@ -353,21 +361,21 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   const bool cacheable = req.method == "GET";
   const std::string etag = cacheable ? content_etag(build_id() + " " + req.path + " " + dump(body)) : "";
   if (cacheable && none_match_fails(req, etag, false)) return not_modified(etag, kRenderCacheControl);
-  const auto token_ptr = make_token(req, budget_seconds);
+  const auto token_ptr = make_token(budget_seconds);
   const CancellationToken& token = *token_ptr;
   const CancellationScope scope(&token);
   std::shared_ptr<Slot> slot;
   RenderHooks hooks;
-  hooks.before_work = [&] { slot = acquire_slot(); };
+  hooks.before_work = [&] { slot = acquire_slot(req); };
   hooks.keep_going = [&](int index) {
     progress(index);
     return !token.cancelled();
   };
   hooks.on_cell = [&](const SweepCell& c) { metrics_.solve_finished(std::string(to_string(c.status)), c.iterations); };
   hooks.on_solve = [&](const SolveResult& r) { metrics_.solve_finished(std::string(to_string(r.status)), r.iterations); };
-  std::vector<unsigned char> png;
+  std::vector<unsigned char> picture;
   try {
-    png = draw(body, options_.limits, *renderer_, hooks);
+    picture = draw(body, options_.limits, *renderer_, hooks);
   } catch (const RenderCancelled&) {
     throw_stopped(token);
   } catch (const Cancelled&) {
@@ -378,8 +386,9 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   HttpResponse res;
   res.set_header("Cache-Control", cacheable ? kRenderCacheControl : "no-store");
   if (cacheable) res.set_header("ETag", etag);
-  res.content_type = "image/png";
-  res.body.assign(png.begin(), png.end());
+  // The format was checked by the drawing: svg or the default png.
+  res.content_type = body.is_object() && body.value("format", "") == "svg" ? "image/svg+xml" : "image/png";
+  res.body.assign(picture.begin(), picture.end());
   return res;
 }
 

@@ -4,6 +4,8 @@
 // validate, take a work slot, then run inline (JSON, PNG) or inside the response's body stream (NDJSON, SSE).
 #include <atomic>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +38,7 @@ class ApiHandlers {
   HttpResponse render_heatmap(const HttpRequest& req);
   HttpResponse render_basins(const HttpRequest& req);
   HttpResponse render_work_precision(const HttpRequest& req);
+  HttpResponse render_invariants(const HttpRequest& req);
   HttpResponse render_residuals(const HttpRequest& req);
   HttpResponse livez(const HttpRequest& req);
   HttpResponse readyz(const HttpRequest& req);
@@ -50,9 +53,9 @@ class ApiHandlers {
 
  private:
   class Slot;
-  std::shared_ptr<Slot> acquire_slot();
+  std::shared_ptr<Slot> acquire_slot(const HttpRequest& req);
   // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps and heatmaps).
-  std::shared_ptr<CancellationToken> make_token(const HttpRequest& req, double budget_seconds) const;
+  std::shared_ptr<CancellationToken> make_token(double budget_seconds) const;
   json run(const Job& job, const Emit& emit, const CancellationToken& token) const;
   void progress(int index) const;
   // done: what the work got through before it stopped, appended to the deadline message.
@@ -73,6 +76,8 @@ class ApiHandlers {
   const std::atomic<bool>& abort_work_;
   const std::string openapi_document_;
   std::atomic<int> slots_in_use_{0};
+  std::mutex slots_mutex_;
+  std::map<std::string, int> slots_per_client_;  // long requests running per client address
   std::unique_ptr<render::Renderer> renderer_;
 };
 

@@ -20,8 +20,11 @@ HttpResponse error_response(const std::exception_ptr& error) {
     if (e.status() == 503) res.set_header("Retry-After", "1");
     return res;
   } catch (const RequestError& e) {
-    const int status = e.kind() == RequestError::Kind::unprocessable ? 422 : 400;
-    return error_response(status, error_code(e), e.field(), e.what());
+    HttpResponse res;
+    res.status = e.kind() == RequestError::Kind::unprocessable ? 422 : 400;
+    res.content_type = "application/json";
+    res.body = dump(error_body(e));
+    return res;
   }
 }
 

@@ -25,8 +25,8 @@ struct HttpRequest {
   HeaderMap headers;
   std::vector<std::pair<long long, long long>> ranges;  // parsed Range header; -1 marks an open end
   std::string body;
-  // Set by the transport when the client hangs up while the request is served (null: never).
-  std::shared_ptr<const std::atomic<bool>> client_gone;
+  // The client's address: the TCP peer, or the X-Real-IP a trusted front forwarded (long-work slots per client).
+  std::string client;
 
   bool has_header(const std::string& name) const { return headers.count(name) > 0; }
   std::size_t header_count(const std::string& name) const { return headers.count(name); }

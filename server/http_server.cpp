@@ -2,42 +2,168 @@
 
 #include "server/httplib_include.hpp"
 
-#include <poll.h>
+#include <strings.h>
 #include <sys/socket.h>
 
 #include <chrono>
-#include <cstring>
+#include <condition_variable>
 #include <ctime>
+#include <deque>
+#include <limits>
+#include <mutex>
+#include <optional>
 #include <regex>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "server/api_handlers.hpp"
-#include "server/connection_reactor.hpp"
 #include "server/http_errors.hpp"
 #include "server/request_limits.hpp"
 #include "server/routes.hpp"
 #include "core/request_error.hpp"
 
 namespace lienewton::service {
-namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// What pre-routing learned about the request, for the logger and metrics. cpp-httplib runs pre-routing,
-// the handler and the logger of one request on the same worker thread.
-struct RequestContext {
-  bool active = false;
-  Clock::time_point start;
-  std::string id;
-  std::string route;
+// The queue behind cpp-httplib's accept loop. Each accepted connection is one task that holds a worker until
+// the connection closes. `workers` threads serve the main lane; beyond `max_queued` waiting connections, new
+// ones go to a small overflow lane whose requests are answered 503 at once (its threads are recognised by id
+// in pre-routing), and beyond `max_connections` held connections, enqueue() waits, so that accept() stops and
+// new connections wait in the kernel's backlog instead of taking descriptors.
+struct WorkerLanes {
+  std::mutex mutex;
+  // One queue and wake-up signal per lane: each new connection wakes one worker of its own lane, not every
+  // idle worker (a flood of connections would otherwise wake all of them once per connection).
+  struct Lane {
+    std::deque<std::function<void()>> jobs;
+    std::condition_variable work;
+  };
+  std::condition_variable room;
+  Lane main_lane;
+  Lane overflow_lane;
+  std::vector<std::thread::id> overflow_ids;
+  std::size_t held = 0;  // connections queued or being served
+  bool stopping = false;  // the server is stopping: enqueue() no longer waits
+  bool shutdown = false;  // the accept loop has ended: workers finish what is queued and exit
+
+  bool on_overflow_thread() {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& id : overflow_ids) {
+      if (id == std::this_thread::get_id()) return true;
+    }
+    return false;
+  }
+  void stop_waiting() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      stopping = true;
+    }
+    room.notify_all();
+  }
 };
-thread_local RequestContext t_context;
-// The connection request the worker thread is serving (set around process_request), and whether the
-// connection must close after this answer (a refused request).
-thread_local const ConnectionRequest* t_connection = nullptr;
-thread_local bool t_close_after = false;
-// Whether pre-routing saw the request; a request cpp-httplib could not parse (400, 414) ends its connection.
-thread_local bool t_routed = false;
+
+namespace {
+
+constexpr int kOverflowWorkers = 2;
+constexpr std::size_t kMaxHeaderFields = 100;
+
+class WorkerQueue : public httplib::TaskQueue {
+ public:
+  WorkerQueue(std::shared_ptr<WorkerLanes> lanes, int workers, std::size_t max_queued, std::size_t max_connections)
+      : lanes_(std::move(lanes)), max_queued_(max_queued), max_connections_(max_connections) {
+    {
+      const std::lock_guard<std::mutex> lock(lanes_->mutex);
+      lanes_->shutdown = false;
+      lanes_->stopping = false;
+      lanes_->overflow_ids.clear();
+    }
+    for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { run(lanes_->main_lane); });
+    for (int i = 0; i < kOverflowWorkers; ++i) {
+      threads_.emplace_back([this] { run(lanes_->overflow_lane); });
+      const std::lock_guard<std::mutex> lock(lanes_->mutex);
+      lanes_->overflow_ids.push_back(threads_.back().get_id());
+    }
+  }
+
+  void enqueue(std::function<void()> fn) override {
+    WorkerLanes::Lane* lane = nullptr;
+    {
+      std::unique_lock<std::mutex> lock(lanes_->mutex);
+      lanes_->room.wait(lock, [&] { return lanes_->held < max_connections_ || lanes_->stopping; });
+      ++lanes_->held;
+      lane = lanes_->main_lane.jobs.size() < max_queued_ ? &lanes_->main_lane : &lanes_->overflow_lane;
+      lane->jobs.push_back(std::move(fn));
+    }
+    lane->work.notify_one();
+  }
+
+  void shutdown() override {
+    {
+      const std::lock_guard<std::mutex> lock(lanes_->mutex);
+      lanes_->shutdown = true;
+    }
+    lanes_->main_lane.work.notify_all();
+    lanes_->overflow_lane.work.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+
+ private:
+  void run(WorkerLanes::Lane& lane) {
+    for (;;) {
+      std::function<void()> fn;
+      {
+        std::unique_lock<std::mutex> lock(lanes_->mutex);
+        lane.work.wait(lock, [&] { return !lane.jobs.empty() || lanes_->shutdown; });
+        if (lane.jobs.empty()) return;
+        fn = std::move(lane.jobs.front());
+        lane.jobs.pop_front();
+      }
+      fn();
+      {
+        const std::lock_guard<std::mutex> lock(lanes_->mutex);
+        --lanes_->held;
+      }
+      lanes_->room.notify_one();
+    }
+  }
+
+  std::shared_ptr<WorkerLanes> lanes_;
+  std::size_t max_queued_;
+  std::size_t max_connections_;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace
+
+// When each request's pre-routing began, for the logger's latency and request id. cpp-httplib hands pre-routing,
+// the handler and the logger the same Request object, so its address names the request until the logger ends it.
+class RequestClocks {
+ public:
+  struct Entry {
+    Clock::time_point start;
+    std::string id;
+  };
+  void begin(const httplib::Request& req, std::string id) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    entries_[&req] = Entry{Clock::now(), std::move(id)};
+  }
+  // The entry of a request pre-routing saw, removed; nullopt for a request cpp-httplib could not parse.
+  std::optional<Entry> end(const httplib::Request& req) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto found = entries_.find(&req);
+    if (found == entries_.end()) return std::nullopt;
+    Entry entry = std::move(found->second);
+    entries_.erase(found);
+    return entry;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::unordered_map<const httplib::Request*, Entry> entries_;
+};
+
+namespace {
 
 // The methods metrics may name; anything else is counted as "other" (label values from a fixed set).
 std::string method_label(const std::string& method) {
@@ -48,76 +174,11 @@ std::string method_label(const std::string& method) {
   return method.empty() ? "-" : "other";
 }
 
-// cpp-httplib's accept loop hands each socket to the task queue; this one runs the hand-over (to the
-// reactor) on the accept thread itself.
-class InlineTaskQueue : public httplib::TaskQueue {
- public:
-  void enqueue(std::function<void()> fn) override { fn(); }
-  void shutdown() override {}
-};
-
-// cpp-httplib's view of one complete request: reads come from the bytes the reactor collected (and end there,
-// so nothing past this request can be read), writes go to the socket. Writes shorter than kCoalesce bytes
-// (status line, header lines) are gathered and sent with the next larger write or at the end.
-class RequestStream : public httplib::Stream {
- public:
-  static constexpr std::size_t kCoalesce = 64;
-  RequestStream(const ConnectionRequest& request, int write_timeout_ms)
-      : request_(request), write_timeout_ms_(write_timeout_ms) {}
-
-  bool is_readable() const override { return read_pos_ < request_.bytes.size(); }
-  bool is_writable() const override { return !failed_ && !request_.client_gone->load() && wait_writable(); }
-  ssize_t read(char* ptr, std::size_t size) override {
-    const std::size_t n = std::min(size, request_.bytes.size() - read_pos_);
-    std::memcpy(ptr, request_.bytes.data() + read_pos_, n);
-    read_pos_ += n;
-    return static_cast<ssize_t>(n);
-  }
-  ssize_t write(const char* ptr, std::size_t size) override {
-    pending_.append(ptr, size);
-    if (size < kCoalesce) return static_cast<ssize_t>(size);
-    return flush() ? static_cast<ssize_t>(size) : -1;
-  }
-  void get_remote_ip_and_port(std::string& ip, int& port) const override {
-    ip = request_.remote_ip;
-    port = request_.remote_port;
-  }
-  void get_local_ip_and_port(std::string& ip, int& port) const override {
-    ip = request_.local_ip;
-    port = request_.local_port;
-  }
-  socket_t socket() const override { return request_.fd; }
-
-  // Sends what is gathered; false when the client is gone or stopped reading for write_timeout.
-  bool flush() {
-    std::string_view rest = pending_;
-    while (!rest.empty() && !failed_) {
-      const ssize_t n = ::send(request_.fd, rest.data(), rest.size(), MSG_NOSIGNAL);
-      if (n > 0) {
-        rest.remove_prefix(static_cast<std::size_t>(n));
-      } else if (n < 0 && errno == EINTR) {
-        continue;
-      } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK) && wait_writable()) {
-        continue;
-      } else {
-        failed_ = true;
-      }
-    }
-    pending_.clear();
-    return !failed_;
-  }
-
- private:
-  bool wait_writable() const {
-    pollfd p{request_.fd, POLLOUT, 0};
-    return ::poll(&p, 1, write_timeout_ms_) == 1 && !(p.revents & (POLLERR | POLLHUP));
-  }
-  const ConnectionRequest& request_;
-  int write_timeout_ms_;
-  std::size_t read_pos_ = 0;
-  std::string pending_;
-  bool failed_ = false;
-};
+std::string route_label(const httplib::Request& req) {
+  if (req.method.empty()) return "unparsed";
+  const RouteSpec* route = find_route(req.method, req.path);
+  return route ? route->path : (path_is_routed(req.path) ? req.path : "static");
+}
 
 std::string regex_escape(const std::string& path) {
   static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
@@ -133,27 +194,53 @@ std::string utc_now() {
   return buf;
 }
 
-// The handlers' view of a request. Pre-routing runs before the body is read, so there it has none yet.
-HttpRequest to_exchange(const httplib::Request& req) {
+// Header fields whose name or value holds CR, LF or NUL: a bare CR inside a line, or one cpp-httplib decoded
+// from %0D, %0A or %00 (it percent-decodes header values). nginx refuses the raw forms with 400 too. Referer is
+// the page's own address, whose query may well hold an encoded newline (the dashboard keeps a program g in
+// it); the server never reads it.
+bool has_control_bytes(const httplib::Headers& headers) {
+  auto bad = [](const std::string& s) { return s.find_first_of(std::string("\r\n\0", 3)) != std::string::npos; };
+  for (const auto& [name, value] : headers) {
+    if (bad(name) || (bad(value) && strcasecmp(name.c_str(), "Referer") != 0)) return true;
+  }
+  return false;
+}
+
+// The handlers' view of a request.
+HttpRequest to_exchange(const httplib::Request& req, std::string client, std::string body = {}) {
   HttpRequest r;
   r.method = req.method;
   r.path = req.path;
   r.params = {req.params.begin(), req.params.end()};
   r.headers = {req.headers.begin(), req.headers.end()};
   r.ranges.assign(req.ranges.begin(), req.ranges.end());
-  r.body = req.body;
-  if (t_connection) r.client_gone = t_connection->client_gone;
+  r.body = std::move(body);
+  r.client = std::move(client);
   return r;
 }
 
+// cpp-httplib 0.11.4 applies a request's Range to any body it sends, error bodies included, but sends a chunked
+// provider's body whole: so a body that must not be sliced goes out chunked.
+void set_whole_body(httplib::Response& res, std::string body, const std::string& content_type) {
+  res.body.clear();
+  res.headers.erase("Content-Type");
+  res.set_chunked_content_provider(content_type.c_str(), [body = std::move(body)](std::size_t, httplib::DataSink& sink) {
+    if (!body.empty() && !sink.write(body.data(), body.size())) return false;
+    sink.done();
+    return true;
+  });
+}
+
 // Writes a handler's answer into cpp-httplib's response. A status of 206 leaves the slicing of the body to
-// cpp-httplib (it applies the request's single range); a body stream becomes a chunked content provider.
-void send(HttpResponse answer, httplib::Response& res) {
+// cpp-httplib (it applies the request's single range); `whole` sends the body unsliced whatever the Range; a
+// body stream becomes a chunked content provider.
+void send(HttpResponse answer, httplib::Response& res, bool whole) {
   res.status = answer.status;
   for (auto& [name, value] : answer.headers) res.set_header(name, value);
   if (answer.status == 304) return;  // no body, and no Content-Type of a body not sent
   if (!answer.stream) {
-    res.set_content(std::move(answer.body), answer.content_type);
+    if (whole && answer.status < 400) set_whole_body(res, std::move(answer.body), answer.content_type);
+    else res.set_content(std::move(answer.body), answer.content_type);
     return;
   }
   // cpp-httplib calls the provider until it signals done(); the stream writes the whole body in one call.
@@ -166,75 +253,13 @@ void send(HttpResponse answer, httplib::Response& res) {
   res.set_chunked_content_provider(answer.content_type, std::move(provider));
 }
 
-// A refused request ends its connection: cpp-httplib writes Connection: close when the request asks for it
-// (the request is a local of its process_request), and the worker then closes the socket.
-void close_after_response(const httplib::Request& req) {
-  auto& mutable_req = const_cast<httplib::Request&>(req);
-  mutable_req.headers.erase("Connection");
-  mutable_req.headers.emplace("Connection", "close");
-  t_close_after = true;
-}
-
 }  // namespace
 
-// cpp-httplib's server with its connection handling replaced: process_and_close_socket (virtual in 0.11.4)
-// gives each accepted socket to the reactor, and serve() runs cpp-httplib's request processing over one
-// complete request.
-class ReactorServer : public httplib::Server {
- public:
-  std::function<void(int fd)> adopt;
-
-  // cpp-httplib listens with a backlog of 5: a burst of connects would wait for SYN retries (seconds).
-  // listen() again on the bound socket only raises the backlog.
-  void widen_backlog(int backlog) { ::listen(svr_sock_, backlog); }
-
-  // True when the connection may carry another request.
-  bool serve(const ConnectionRequest& request, bool close_connection, int write_timeout_ms) {
-    RequestStream stream(request, write_timeout_ms);
-    t_connection = &request;
-    t_close_after = false;
-    t_routed = false;
-    bool client_closes = false;
-    const bool ok = process_request(stream, close_connection, client_closes, nullptr);
-    const bool sent = stream.flush();
-    t_connection = nullptr;
-    return ok && sent && t_routed && !client_closes && !close_connection && !t_close_after;
-  }
-
- private:
-  bool process_and_close_socket(socket_t sock) override {
-    adopt(sock);
-    return true;
-  }
-};
-
 HttpServer::HttpServer(ServerOptions options)
-    : options_(std::move(options)), server_(std::make_unique<ReactorServer>()) {
+    : options_(std::move(options)), server_(std::make_unique<httplib::Server>()),
+      lanes_(std::make_shared<WorkerLanes>()), clocks_(std::make_unique<RequestClocks>()) {
   api_ = std::make_unique<ApiHandlers>(options_, metrics_, draining_, abort_work_);
   install();
-  ReactorLimits limits;
-  limits.max_header_bytes = options_.max_header_bytes;
-  limits.max_headers = static_cast<std::size_t>(options_.max_headers);
-  limits.max_body = options_.max_body;
-  limits.request_read_timeout = options_.request_read_timeout;
-  limits.keep_alive_timeout = options_.keep_alive_seconds;
-  limits.max_connections = options_.max_connections;
-  limits.max_connections_per_client = options_.max_connections_per_client;
-  limits.workers = options_.threads;
-  limits.health_workers = 2;
-  ConnectionReactor::Routing routing;
-  routing.is_health = [](std::string_view path) { return path == "/livez" || path == "/readyz"; };
-  // API answers are never byte ranges; static files keep theirs.
-  routing.ignores_range = [](std::string_view path) { return path != "/" && path_is_routed(std::string(path)); };
-  auto serve = [this](const ConnectionRequest& request) {
-    return server_->serve(request, draining_.load(), 5000);
-  };
-  auto refused = [this](int status, std::string_view code) {
-    metrics_.rejected(std::string(code));
-    metrics_.request_finished("unparsed", "-", status, 0.0);
-  };
-  reactor_ = std::make_unique<ConnectionReactor>(limits, std::move(routing), std::move(serve), std::move(refused));
-  server_->adopt = [this](int fd) { reactor_->adopt(fd); };
 }
 
 HttpServer::~HttpServer() {
@@ -242,37 +267,67 @@ HttpServer::~HttpServer() {
   if (thread_.joinable()) thread_.join();
 }
 
+std::string HttpServer::client_address(const httplib::Request& req) const {
+  for (const auto& front : options_.trusted_fronts) {
+    if (req.remote_addr != front) continue;
+    const std::string forwarded = req.get_header_value("X-Real-IP");
+    const bool plausible = !forwarded.empty() && forwarded.size() <= 45 &&
+                           forwarded.find_first_not_of("0123456789abcdefABCDEF:.") == std::string::npos;
+    if (plausible) return forwarded;
+  }
+  return req.remote_addr;
+}
+
 void HttpServer::install() {
   auto& svr = *server_;
-  svr.new_task_queue = [] { return new InlineTaskQueue(); };
+  svr.new_task_queue = [this] {
+    return new WorkerQueue(lanes_, options_.threads, static_cast<std::size_t>(options_.effective_max_queued()),
+                           static_cast<std::size_t>(options_.max_connections));
+  };
   // SO_REUSEADDR only: cpp-httplib's default adds SO_REUSEPORT, which lets a second server share the port.
-  svr.set_socket_options([](socket_t sock) {
+  // The socket is kept to widen cpp-httplib's listen backlog of 5 after bind().
+  svr.set_socket_options([this](socket_t sock) {
     const int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    listen_fd_ = sock;
   });
   svr.set_payload_max_length(options_.max_body);
-  svr.set_read_timeout(5, 0);
-  svr.set_write_timeout(5, 0);
-  svr.set_keep_alive_timeout(options_.keep_alive_seconds);
-  svr.set_keep_alive_max_count(100);
+  const auto seconds = static_cast<time_t>(options_.read_timeout);
+  const auto micros = static_cast<time_t>((options_.read_timeout - static_cast<double>(seconds)) * 1e6);
+  svr.set_read_timeout(seconds, micros);
+  svr.set_write_timeout(seconds, micros);
+  // One request per connection: cpp-httplib 0.11.4 would read a refused request's unread body as the next
+  // request of a kept-alive connection (and drops pipelined requests it has read ahead), so every answer says
+  // Connection: close and the connection ends with it. Keep-alive towards browsers is the front's job.
+  svr.set_keep_alive_max_count(1);
+  svr.set_keep_alive_timeout(options_.idle_seconds);
   svr.set_tcp_nodelay(true);
   svr.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
 
   svr.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    t_context = RequestContext{true, Clock::now(), "", ""};
-    t_routed = true;
     const std::string given = req.get_header_value("X-Request-Id");
-    t_context.id = valid_request_id(given) ? given : generate_request_id();
-    res.set_header("X-Request-Id", t_context.id);
+    const std::string id = valid_request_id(given) ? given : generate_request_id();
+    clocks_->begin(req, id);
+    res.set_header("X-Request-Id", id);
 
     const RouteSpec* route = find_route(req.method, req.path);
-    t_context.route = route ? route->path : (path_is_routed(req.path) ? req.path : "static");
     auto refuse = [&](int status, const std::string& code, const std::string& message) {
       metrics_.rejected(code);
-      close_after_response(req);
-      send(error_response(status, code, "", message), res);
+      send(error_response(status, code, "", message), res, false);
       return httplib::Server::HandlerResponse::Handled;
     };
+    // The overflow lane still answers /livez: the process is alive, only busy.
+    if (lanes_->on_overflow_thread() && !(route && route->path == "/livez")) {
+      res.set_header("Retry-After", "1");
+      return refuse(503, "server_busy", "the server has more connections waiting than it serves; retry shortly");
+    }
+    // cpp-httplib 0.11.4 caps a header line (8 KB) but not their number; it adds four of its own (REMOTE_ADDR...).
+    if (req.headers.size() > kMaxHeaderFields + 4) {
+      return refuse(431, "too_many_headers", "a request may carry at most " + std::to_string(kMaxHeaderFields) + " header fields");
+    }
+    if (has_control_bytes(req.headers)) {
+      return refuse(400, "invalid_header", "a header field holds a CR, LF or NUL byte");
+    }
     if (!route && path_is_routed(req.path)) {
       std::string allow;
       for (const auto& r : route_table()) {
@@ -285,20 +340,19 @@ void HttpServer::install() {
       return refuse(404, "not_found", "no such route: " + req.method + " " + req.path);
     }
     const BodyKind kind = route ? route->body : BodyKind::none;
-    if (auto rejection = check_body_rules(to_exchange(req), kind, options_.max_body)) {
+    HttpRequest request = to_exchange(req, client_address(req));
+    if (route) request.ranges.clear();  // API answers ignore Range (sent whole), so no range is refused there
+    // A JSON body beyond the cap is left to cpp-httplib, which reads and discards it and answers 413: refused
+    // here, it would stay unread, and closing a socket with unread bytes resets the connection before the
+    // client has read the answer.
+    const std::size_t cap = kind == BodyKind::json ? std::numeric_limits<std::size_t>::max() : options_.max_body;
+    if (auto rejection = check_body_rules(request, kind, cap)) {
       return refuse(rejection->status, rejection->code, rejection->message);
     }
     if (route && route->long_work) {
-      if (auto rejection = check_same_origin(to_exchange(req))) {
+      if (auto rejection = check_same_origin(request)) {
         return refuse(rejection->status, rejection->code, rejection->message);
       }
-    }
-    if (kind == BodyKind::json && req.get_header_value("Content-Type").find("application/x-www-form-urlencoded") == 0) {
-      // What curl -d sends. The body is read as JSON all the same; relabelled here (before cpp-httplib reads
-      // the body) because cpp-httplib refuses form bodies above 8192 bytes and parses them into parameters.
-      auto& mutable_req = const_cast<httplib::Request&>(req);
-      mutable_req.headers.erase("Content-Type");
-      mutable_req.headers.emplace("Content-Type", "application/json");
     }
     if (draining_.load() && !(route && route->serves_while_draining)) {
       res.set_header("Retry-After", "1");
@@ -307,54 +361,103 @@ void HttpServer::install() {
     return httplib::Server::HandlerResponse::Unhandled;
   });
 
+  // Expect: 100-continue: a body announced too large (or otherwise refused) is refused before it is sent.
+  svr.set_expect_100_continue_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const RouteSpec* route = find_route(req.method, req.path);
+    HttpRequest request = to_exchange(req, client_address(req));
+    if (route) request.ranges.clear();
+    if (auto rejection = check_body_rules(request, route ? route->body : BodyKind::none, options_.max_body)) {
+      metrics_.rejected(rejection->code);
+      send(error_response(rejection->status, rejection->code, "", rejection->message), res, false);
+      return rejection->status;
+    }
+    return 100;
+  });
+
+  // API answers are never byte ranges: under a Range they go out whole (static files keep their ranges).
   for (const auto& route : route_table()) {
-    auto handler = [this, answer = route.handler](const httplib::Request& req, httplib::Response& res) {
-      send(respond(answer, req), res);
-    };
     const std::string pattern = regex_escape(route.path);
-    if (route.method == "GET") svr.Get(pattern, handler);
-    else svr.Post(pattern, handler);
+    if (route.method == "GET") {
+      svr.Get(pattern, [this, answer = route.handler](const httplib::Request& req, httplib::Response& res) {
+        send(respond(answer, to_exchange(req, client_address(req))), res, !req.ranges.empty());
+      });
+    } else {
+      // Read through a content reader: cpp-httplib's own body reading parses form bodies (what curl -d sends)
+      // into parameters and refuses them beyond 8192 bytes; these bodies are JSON whatever their label.
+      svr.Post(pattern, [this, answer = route.handler](const httplib::Request& req, httplib::Response& res,
+                                                       const httplib::ContentReader& read) {
+        std::string body;
+        const bool complete = read([&body](const char* data, std::size_t size) {
+          body.append(data, size);
+          return true;
+        });
+        if (!complete && res.status == 413) {
+          metrics_.rejected("body_too_large");
+          send(error_response(413, "body_too_large", "", "the request body is larger than the limit of " +
+                                                            std::to_string(options_.max_body) + " bytes"), res, false);
+          return;
+        }
+        if (!complete) {
+          send(error_response(400, "incomplete_body", "", "the request body did not arrive in full"), res, false);
+          return;
+        }
+        send(respond(answer, to_exchange(req, client_address(req), std::move(body))), res, !req.ranges.empty());
+      });
+    }
     registered_.emplace_back(route.method, route.path);
   }
   // Everything else under / is a static file (or a JSON 404).
   svr.Get("/.*", [this](const httplib::Request& req, httplib::Response& res) {
-    send(respond(&ApiHandlers::static_file, req), res);
+    send(respond(&ApiHandlers::static_file, to_exchange(req, client_address(req))), res, false);
   });
 
-  // Runs for every status >= 400: fill in a JSON body where no handler wrote one (404, 400 from the parser).
+  // Runs for every status >= 400, before cpp-httplib applies ranges: fills in a JSON body where nothing wrote
+  // one (404, and 400/414/416 from cpp-httplib's parser), and keeps error bodies whole under any Range.
   svr.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
-    if (!res.body.empty() || res.is_chunked_content_provider_) return httplib::Server::HandlerResponse::Unhandled;
-    std::string code = "error";
-    std::string message = "the request could not be served";
-    switch (res.status) {
-      case 400: code = "bad_request"; message = "the request is not valid HTTP"; break;
-      case 404: code = "not_found"; message = "no such route or file: " + req.path; break;
-      case 413: code = "body_too_large"; message = "the request body is too large"; break;
-      case 414: code = "uri_too_long"; message = "the request URI is too long"; break;
-      case 416: code = "range_not_satisfiable"; message = "the Range header cannot be satisfied"; break;
-      default: break;
+    if (res.body.empty()) {  // streams, the only answers without a body here, never fail with a status
+      std::string code = "error";
+      std::string message = "the request could not be served";
+      switch (res.status) {
+        case 400: code = "bad_request"; message = "the request is not valid HTTP"; break;
+        case 404: code = "not_found"; message = "no such route or file: " + req.path; break;
+        case 413: code = "body_too_large"; message = "the request body is too large"; break;
+        case 414: code = "uri_too_long"; message = "the request URI is too long"; break;
+        case 416: code = "range_not_satisfiable"; message = "the Range header cannot be satisfied"; break;
+        default: break;
+      }
+      send(error_response(res.status, code, "", message), res, false);
     }
-    send(error_response(res.status, code, "", message), res);
+    if (!req.ranges.empty() && !res.body.empty()) {
+      std::string body = std::move(res.body);
+      set_whole_body(res, std::move(body), res.get_header_value("Content-Type"));
+    }
     return httplib::Server::HandlerResponse::Handled;
   }));
+  // With several ranges cpp-httplib relabels any answer multipart/byteranges; the only such answers here are
+  // whole JSON refusals (check_body_rules: 416).
+  svr.set_post_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (req.ranges.size() > 1 && res.status != 206) {
+      res.headers.erase("Content-Type");
+      res.set_header("Content-Type", "application/json");
+    }
+  });
 
   // Without this cpp-httplib 0.11.4 puts the exception text into a response header (CVE-2026-28434).
   svr.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
     res.headers.erase("Content-Type");
-    send(error_response(500, "internal_error", "", "internal error"), res);
+    send(error_response(500, "internal_error", "", "internal error"), res, false);
   });
 
   svr.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
-    const bool known = t_context.active;
-    const double seconds = known ? std::chrono::duration<double>(Clock::now() - t_context.start).count() : 0.0;
-    const std::string route = known ? t_context.route : "unparsed";
-    const std::string id = known ? t_context.id : generate_request_id();
-    t_context.active = false;
+    const auto clock = clocks_->end(req);
+    const double seconds = clock ? std::chrono::duration<double>(Clock::now() - clock->start).count() : 0.0;
+    const std::string route = clock ? route_label(req) : "unparsed";
     metrics_.request_finished(route, method_label(req.method), res.status, seconds);
     if (options_.log) {
-      json line{{"time", utc_now()},    {"request_id", id},  {"method", req.method},
-                {"path", req.path},     {"route", route},    {"status", res.status},
-                {"seconds", seconds},   {"remote", req.remote_addr}};
+      json line{{"time", utc_now()},    {"request_id", clock ? clock->id : generate_request_id()},
+                {"method", req.method}, {"path", req.path},
+                {"route", route},       {"status", res.status},
+                {"seconds", seconds},   {"remote", client_address(req)}};
       *options_.log << dump(line) + "\n" << std::flush;
     }
   });
@@ -362,9 +465,9 @@ void HttpServer::install() {
 
 // Handler exceptions that name an HTTP refusal become error responses; anything else reaches the exception
 // handler above (500).
-HttpResponse HttpServer::respond(RouteHandler handler, const httplib::Request& req) {
+HttpResponse HttpServer::respond(RouteHandler handler, const HttpRequest& req) {
   try {
-    return ((*api_).*handler)(to_exchange(req));
+    return ((*api_).*handler)(req);
   } catch (const ApiError&) {
     return error_response(std::current_exception());
   } catch (const RequestError&) {
@@ -383,7 +486,9 @@ int HttpServer::bind() {
     }
     port_ = options_.port;
   }
-  server_->widen_backlog(1024);
+  // cpp-httplib listens with a backlog of 5: a burst of connects would wait for SYN retries (seconds).
+  // listen() again on the bound socket only raises the backlog.
+  if (listen_fd_ >= 0) ::listen(listen_fd_, 1024);
   return port_;
 }
 
@@ -410,9 +515,10 @@ void HttpServer::drain_and_stop(double limit_seconds) {
 }
 
 void HttpServer::stop() {
+  // An accept loop waiting for room in the queue must see the listener close.
+  lanes_->stop_waiting();
   if (server_ && server_->is_running()) server_->stop();
   if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
-  if (reactor_) reactor_->stop();
 }
 
 }  // namespace lienewton::service

@@ -1,8 +1,11 @@
 #pragma once
-// lienewton's HTTP service: cpp-httplib parses, routes and writes each request, but connections belong to the
-// ConnectionReactor (server/connection_reactor.hpp), which hands a worker one complete request at a time.
-// Routes from the route table, body/header hardening, bounded long work (work slots, deadlines, client-
-// disconnect cancellation), NDJSON/SSE streams, metrics, one JSON log line per request, a drain for SIGTERM.
+// lienewton's HTTP service on cpp-httplib 0.11.4, the only code that parses HTTP, configured through its public
+// API alone: one request per connection (a refused request's unread body can never be read as another
+// request), per-read timeouts, a payload cap, a pre-routing handler that refuses what must not reach a handler,
+// and a worker queue of its own (bounded: 503 beyond it; connections capped below the descriptor limit).
+// Slow and hostile clients are for the front (deploy/nginx) to absorb.
+// Routes from the route table, bounded long work (work slots per client, deadlines), NDJSON/SSE streams,
+// metrics, one JSON log line per request, a drain for SIGTERM.
 #include <atomic>
 #include <memory>
 #include <string>
@@ -16,14 +19,15 @@
 #include "server/server_options.hpp"
 
 namespace httplib {
+class Server;
 struct Request;
 }  // namespace httplib
 
 namespace lienewton::service {
 
 class ApiHandlers;
-class ConnectionReactor;
-class ReactorServer;
+struct WorkerLanes;
+class RequestClocks;
 
 class HttpServer {
  public:
@@ -52,17 +56,21 @@ class HttpServer {
 
  private:
   void install();
-  HttpResponse respond(RouteHandler handler, const httplib::Request& req);
+  HttpResponse respond(RouteHandler handler, const HttpRequest& req);
+  // The client's address: the TCP peer, or X-Real-IP when the peer is a trusted front.
+  std::string client_address(const httplib::Request& req) const;
 
   ServerOptions options_;
   Metrics metrics_;
   std::atomic<bool> draining_{false};
   std::atomic<bool> abort_work_{false};
-  std::unique_ptr<ReactorServer> server_;
-  std::unique_ptr<ConnectionReactor> reactor_;
+  std::unique_ptr<httplib::Server> server_;
+  std::shared_ptr<WorkerLanes> lanes_;
+  std::unique_ptr<RequestClocks> clocks_;
   std::unique_ptr<ApiHandlers> api_;
   std::vector<std::pair<std::string, std::string>> registered_;
   std::thread thread_;
+  int listen_fd_ = -1;
   int port_ = -1;
 };
 

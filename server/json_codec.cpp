@@ -135,8 +135,7 @@ const json& read_array(const json& v, const std::string& field, std::size_t min_
   return v;
 }
 
-Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
-  const std::string message = field + " must be an n x n array of rows of finite numbers (n = " + std::to_string(n) + ")";
+Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n, const std::string& message) {
   if (!v.is_array() || v.size() != static_cast<std::size_t>(n)) fail(field, message);
   Eigen::MatrixXd m(n, n);
   for (int i = 0; i < n; ++i) {
@@ -145,6 +144,11 @@ Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
     for (int j = 0; j < n; ++j) m(i, j) = read_number(row[static_cast<std::size_t>(j)], field, message);
   }
   return m;
+}
+
+Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
+  return read_matrix(v, field, n,
+                     field + " must be an n x n array of rows of finite numbers (n = " + std::to_string(n) + ")");
 }
 
 // ---- Reading a request by the rows of core/fields.hpp --------------------------------------------------------
@@ -217,6 +221,40 @@ std::string read_value(const json& v, const fields::Field&, const std::string& p
   return v.get<std::string>();
 }
 
+// A user's program (g); whether it compiles is the core's question (422 with line and column).
+std::optional<std::string> read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r,
+                                      Tag<std::optional<std::string>>) {
+  return read_value(v, row, path, r, Tag<std::string>{});
+}
+
+// A program's named values: each a number (1 x 1), an array of numbers (a row) or an array of rows (a matrix).
+user_field::Parameters read_value(const json& v, const fields::Field&, const std::string& path, Reading&,
+                                  Tag<user_field::Parameters>) {
+  if (!v.is_object()) fail(path, path + " must be an object of named numbers and matrices");
+  user_field::Parameters out;
+  for (const auto& [name, x] : v.items()) {
+    const std::string at = path + "." + name;
+    const std::string message = at + " must be a finite number, an array of them or an array of equal-length rows";
+    if (x.is_number()) {
+      out[name] = Eigen::MatrixXd::Constant(1, 1, read_number(x, at, message));
+      continue;
+    }
+    if (!x.is_array() || x.empty()) fail(at, message);
+    const bool rows = x[0].is_array();
+    const std::size_t r = rows ? x.size() : 1, c = rows ? x[0].size() : x.size();
+    if (double(r) * double(c) > user_field::kMaxElements) fail(at, at + " is too large");
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+    for (std::size_t i = 0; i < r; ++i) {
+      const json& row = rows ? x[i] : x;
+      if (!row.is_array() || row.size() != c) fail(at, message);
+      for (std::size_t j = 0; j < c; ++j)
+        m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = read_number(row[j], at, message);
+    }
+    out[name] = std::move(m);
+  }
+  return out;
+}
+
 template <class E>
   requires std::is_enum_v<E>
 E read_value(const json& v, const fields::Field& row, const std::string& path, Reading&, Tag<E>) {
@@ -230,10 +268,16 @@ E read_value(const json& v, const fields::Field& row, const std::string& path, R
   fail(path, message);
 }
 
-// A square matrix of the request's n.
+// A square matrix of the request's group's size (n on SO(n), n + 1 on SE(n)); an unknown group is refused here
+// with the registry's 422.
 std::optional<Eigen::MatrixXd> read_value(const json& v, const fields::Field&, const std::string& path, Reading& r,
                                           Tag<std::optional<Eigen::MatrixXd>>) {
-  return read_matrix(v, path, *r.n);
+  const GroupFamily& family = group_family(*r.group);
+  const int size = family.matrix_size(*r.n);
+  if (size == *r.n) return read_matrix(v, path, size);
+  const std::string k = std::to_string(size);
+  return read_matrix(v, path, size, path + " must be a " + k + " x " + k + " array of rows of finite numbers (an "
+                                        "element of " + family.title(*r.n) + ")");
 }
 
 // A fixed-length vector of numbers within the row's bounds (rigid_body.inertia: positive).
@@ -247,6 +291,11 @@ Eigen::Vector3d read_value(const json& v, const fields::Field& row, const std::s
     if (!row.contains(out[i])) fail(path, message);
   }
   return out;
+}
+
+// A 3 x 3 matrix of finite numbers (heavy_top.rotation; whether it is a rotation is the core's question, 422).
+Eigen::Matrix3d read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<Eigen::Matrix3d>) {
+  return read_matrix(v, path, 3, path + " must be a 3 x 3 array of rows of finite numbers");
 }
 
 // Coordinates in the algebra of the request's group (SO(n): n(n-1)/2 of them); an unknown group is refused here
@@ -333,8 +382,9 @@ void land(R& request, T C::*member, const json& v, const fields::Field& row, con
   C* target = part<C>(request);
   if (!target) return;
   if constexpr (std::is_same_v<C, ProblemSpec> && std::is_same_v<T, std::optional<Eigen::MatrixXd>>) {
-    // z without n: its size is n.
-    if (!r.n_given && v.is_array() && v.size() >= 2 && v.size() <= static_cast<std::size_t>(r.limits.max_n))
+    // z without n: n is the index whose matrices have z's size (z's size itself unless the default n's do).
+    if (!r.n_given && v.is_array() && v.size() >= 2 && v.size() <= static_cast<std::size_t>(r.limits.max_n) &&
+        group_family(*r.group).matrix_size(target->n) != static_cast<int>(v.size()))
       target->n = static_cast<int>(v.size());
   }
   target->*member = read_value(v, row, path, r, Tag<T>{});
@@ -362,6 +412,9 @@ Request read_request(const json& body, fields::Route route, const Limits& limits
   r.group = &part<ProblemSpec>(request)->group;
   r.n_given = body.is_object() && body.contains("n") && !body["n"].is_null();
   read_object(body, "", fields::fields_of(route), request, r);
+  if (part<ProblemSpec>(request)->g && body.contains("problem") && !body["problem"].is_null())
+    throw RequestError(RequestError::Kind::unprocessable, "g",
+                       "give either g (your own field) or problem (a built-in one), not both");
   return request;
 }
 
@@ -435,6 +488,11 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
 
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   IntegrateRequest r = read_request<IntegrateRequest>(body, fields::integrate, limits);
+  // Adaptive steps: h is only the first step; the tries are bounded by max_steps, at most the server's step limit.
+  if (r.adaptive()) {
+    r.max_steps = static_cast<int>(std::min<double>(r.max_steps, limits.max_steps));
+    return r;
+  }
   if (r.t_end / r.h > limits.max_steps) {
     fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
   }
@@ -443,10 +501,17 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   WorkPrecisionRequest r = read_request<WorkPrecisionRequest>(body, fields::work_precision, limits);
+  const double choices = static_cast<double>(std::max<std::size_t>(r.choices.size(), 1));
+  if (!r.tolerances.empty()) {  // adaptive runs share the server's step budget
+    const double runs = choices * static_cast<double>(r.tolerances.size());
+    if (runs > static_cast<double>(limits.max_grid_cells))
+      fail("tolerances", "choices x tolerances must be at most " + std::to_string(limits.max_grid_cells) + " runs");
+    r.max_steps = static_cast<int>(std::max(1.0, std::min<double>(r.max_steps, std::floor(limits.max_steps / runs))));
+    return r;
+  }
   // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.
   std::vector<double> hs = r.h;
   if (hs.empty()) for (int k = 2; k <= 7; ++k) hs.push_back(std::ldexp(1.0, -k));
-  const double choices = static_cast<double>(std::max<std::size_t>(r.choices.size(), 1));
   double steps = 0;
   for (double h : hs) steps += choices * r.t_end / h;
   if (choices * static_cast<double>(hs.size()) > static_cast<double>(limits.max_grid_cells)) {
@@ -728,6 +793,18 @@ json matrix_to_json(const Eigen::MatrixXd& m) {
   return rows;
 }
 
+json to_json(const PathPoint& p) {
+  return json{{"kind", std::string(to_string(p.kind))},
+              {"h", finite_or_null(p.h)},
+              {"status", std::string(to_string(p.status))},
+              {"iterations", p.iterations},
+              {"residual", finite_or_null(p.residual)},
+              {"distance", finite_or_null(p.distance)},
+              {"angle", finite_or_null(p.angle)},
+              {"dh_ds", finite_or_null(p.dh_ds)},
+              {"step_length", finite_or_null(p.step_length)}};
+}
+
 json to_json(const TraceRecord& t, bool include_iterates) {
   json j{{"iteration", t.iteration},
          {"residual", finite_or_null(t.residual)},
@@ -743,6 +820,7 @@ json to_json(const TraceRecord& t, bool include_iterates) {
   if (t.trust_radius) j["trust_radius"] = finite_or_null(*t.trust_radius);
   if (t.step_from_iterate) j["step_from_iterate"] = *t.step_from_iterate;
   if (t.stage_h) j["stage_h"] = finite_or_null(*t.stage_h);
+  if (t.path_point) j["path_point"] = to_json(*t.path_point);
   if (include_iterates) j["y"] = matrix_to_json(t.y);
   return j;
 }
@@ -767,15 +845,17 @@ json to_json(const SolveResult& r, bool include_iterates) {
          {"cpu_seconds", finite_or_null(r.cpu_seconds)},
          {"linear_solver", r.linear_solver}};
   if (r.algebra_residual) j["algebra_residual"] = finite_or_null(*r.algebra_residual);
+  j["branch"] = std::string(to_string(r.branch));
+  j["found_by"] = std::string(to_string(r.found_by));
+  j["distance_from_z"] = finite_or_null(r.distance_from_z);
+  j["total_iterations"] = r.total_iterations();
+  if (r.fold_h) j["fold_h"] = finite_or_null(*r.fold_h);
+  if (r.path_h) j["path_h"] = finite_or_null(*r.path_h);
+  if (r.multistart_start) j["multistart_start"] = *r.multistart_start;
+  if (r.multistart_tries > 0) j["multistart_tries"] = r.multistart_tries;
   if (!r.continuation.empty()) {
     json stages = json::array();
-    for (const ContinuationStage& s : r.continuation) {
-      stages.push_back(json{{"h", finite_or_null(s.h)}, {"status", std::string(to_string(s.status))},
-                            {"iterations", s.iterations}, {"residual", finite_or_null(s.residual)},
-                            {"start", std::string(to_string(s.start))},
-                            {"globalization", std::string(to_string(s.globalization))}});
-      if (s.restart) stages.back()["restart"] = *s.restart;
-    }
+    for (const PathPoint& p : r.continuation) stages.push_back(to_json(p));
     j["continuation"] = json{{"stages", std::move(stages)}, {"total_iterations", r.total_iterations()}};
   }
   return j;
@@ -804,13 +884,23 @@ json to_json(const SweepResult& r) {
   return out;
 }
 
+// One number (or null) per invariant, named prefix + its API name + suffix (openapi.cpp's invariant_numbers).
+json& add_invariants(json& out, const InvariantValues& values, const std::string& prefix, const std::string& suffix) {
+  for (Invariant i : kAllInvariants) out[prefix + std::string(to_string(i)) + suffix] = optional_number(values[i]);
+  return out;
+}
+
 json to_json(const StepRecord& s) {
-  return json{{"step", s.step},
-              {"t", finite_or_null(s.t)},
-              {"iterations", s.iterations},
-              {"residual", finite_or_null(s.residual)},
-              {"status", std::string(to_string(s.status))},
-              {"energy", finite_or_null(s.energy)}};
+  json out{{"step", s.step},
+           {"t", finite_or_null(s.t)},
+           {"iterations", s.iterations},
+           {"residual", finite_or_null(s.residual)},
+           {"status", std::string(to_string(s.status))},
+           {"substeps", s.substeps},
+           {"h", finite_or_null(s.h)},
+           {"error_estimate", optional_number(s.error_estimate)},
+           {"rejected", s.rejected}};
+  return add_invariants(out, s.invariants, "", "");
 }
 
 json to_json(const IntegrateResult& r) {
@@ -820,21 +910,24 @@ json to_json(const IntegrateResult& r) {
   for (const auto& m : r.frames) frames.push_back(matrix_to_json(m));
   json times = json::array();
   for (double t : r.frame_times) times.push_back(finite_or_null(t));
-  return json{{"status", std::string(to_string(r.status))},
+  json out{{"status", std::string(to_string(r.status))},
               {"reason", r.reason},
               {"steps", std::move(steps)},
               {"global_error", optional_number(r.global_error)},
-              {"energy_drift", optional_number(r.energy_drift)},
-              {"initial_energy", optional_number(r.initial_energy)},
               {"orthogonality_error", finite_or_null(r.orthogonality_error)},
               {"total_iterations", r.total_iterations},
+              {"substeps", r.substeps},
               {"mean_iterations", finite_or_null(r.mean_iterations)},
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},
               {"frame_times", std::move(times)},
               {"frame_steps", r.frame_steps},
               {"cpu_seconds", finite_or_null(r.cpu_seconds)},
-              {"reference_seconds", finite_or_null(r.reference_seconds)}};
+              {"reference_seconds", finite_or_null(r.reference_seconds)},
+              {"adaptive", r.adaptive},
+              {"rejected", r.rejected}};
+  add_invariants(out, r.initial_invariants, "initial_", "");
+  return add_invariants(out, r.invariant_drifts, "", "_drift");
 }
 
 json to_json(const WorkPrecisionChoice& c) {
@@ -850,9 +943,21 @@ json to_json(const WorkPrecisionSeries& s) {
                           {"cpu_seconds", finite_or_null(p.cpu_seconds)},
                           {"error", finite_or_null(p.error)},
                           {"status", std::string(to_string(p.status))},
-                          {"iterations", p.iterations}});
+                          {"iterations", p.iterations},
+                          {"substeps", p.substeps},
+                          {"tolerance", optional_number(p.tolerance)},
+                          {"rejected", p.rejected},
+                          {"in_fit", p.in_fit}});
+    add_invariants(points.back(), p.drifts, "", "_drift");
+    if (!p.in_fit) points.back()["excluded"] = p.excluded;
   }
-  return json{{"choice", to_json(s.choice)}, {"points", std::move(points)}, {"fitted_order", optional_number(s.fitted_order)}};
+  json fit_h = json::array();
+  for (const auto& p : s.points)
+    if (p.in_fit) fit_h.push_back(finite_or_null(p.h));
+  return json{{"choice", to_json(s.choice)},
+              {"points", std::move(points)},
+              {"fitted_order", optional_number(s.fitted_order)},
+              {"fit_h", std::move(fit_h)}};
 }
 
 json to_json(const WorkPrecisionResult& r) {
@@ -869,7 +974,14 @@ json error_body(std::string_view code, std::string_view field, std::string_view 
   return json{{"error", std::move(e)}};
 }
 
-json error_body(const RequestError& error) { return error_body(error_code(error), error.field(), error.what()); }
+json error_body(const RequestError& error) {
+  json body = error_body(error_code(error), error.field(), error.what());
+  if (error.line() > 0) {  // a program's fault: where in it
+    body["error"]["line"] = error.line();
+    body["error"]["column"] = error.column();
+  }
+  return body;
+}
 
 std::string dump(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
 

@@ -59,6 +59,7 @@ SweepResult sweep_result_from_json(const json& body, const Limits& limits);
 // them from the pixels).
 BasinResult basin_result_from_json(const json& body);
 
+json to_json(const PathPoint& point);
 json to_json(const TraceRecord& record, bool include_iterates);
 json to_json(const SolveResult& result, bool include_iterates);
 json to_json(const SweepCell& cell);

@@ -7,6 +7,7 @@
 #include "core/basins.hpp"
 #include "core/options.hpp"
 #include "core/status.hpp"
+#include "core/vocabulary.hpp"
 #include "core/fields.hpp"
 #include "server/json_codec.hpp"
 #include "server/openapi_labels.hpp"
@@ -29,6 +30,15 @@ json ref(const std::string& name) { return json{{"$ref", "#/components/schemas/"
 json number(const char* description) { return json{{"type", "number"}, {"description", description}}; }
 json nullable_number(const char* description) {
   return json{{"type", "number"}, {"nullable", true}, {"description", description}};
+}
+// One nullable number per invariant (core/invariants.hpp), named prefix + its API name + suffix, described by
+// what + the invariant's sentence.
+json invariant_numbers(json properties, const std::string& prefix, const std::string& suffix, const std::string& what) {
+  for (Invariant i : kAllInvariants)
+    properties[prefix + std::string(to_string(i)) + suffix] =
+        json{{"type", "number"}, {"nullable", true},
+             {"description", what + std::string(words(i).sentence) + " (null where the problem has no such invariant)"}};
+  return properties;
 }
 json integer(const char* description) { return json{{"type", "integer"}, {"description", description}}; }
 json array_of(json items) { return json{{"type", "array"}, {"items", std::move(items)}}; }
@@ -164,9 +174,19 @@ json schemas() {
                             {"step_from_iterate", json{{"type", "integer"},
                                                        {"description", "globalised Newton only: the watchdog went back "
                                                                        "to this earlier iterate and u_{n-1} starts there"}}},
-                            {"stage_h", nullable_number("continuation only: the h of the stage this iterate belongs to "
-                                                        "(streams carry every stage's records, the result's trace the last)")},
+                            {"stage_h", nullable_number("continuation only: the h of the equation this record belongs to "
+                                                        "(streams carry the path's points and every solve's records, the result's trace the last solve's)")},
+                            {"path_point", ref("PathPoint")},
                             {"y", matrix("iterate, only with include_iterates")}};
+  s["PathPoint"] = object({{"kind", enum_schema(kAllPathPointKinds, "path: a corrected root (v, h) of v - h g(z exp v) = 0 on z's branch; final: the method's solve at the requested h; fold: where the branch turns back in h")},
+                           {"h", number("the point's step size")}, {"status", status},
+                           {"iterations", integer("the corrector's Newton iterations (final: the method's)")},
+                           {"residual", nullable_number("||v - h g(z exp v)|| (final: ||f(y)|| of the method's y)")},
+                           {"distance", nullable_number("||v||, v = log(z^-1 y) continued along the branch")},
+                           {"angle", nullable_number("largest rotation angle of v")},
+                           {"dh_ds", nullable_number("h-component of the branch's unit tangent; its sign change is a fold")},
+                           {"step_length", nullable_number("arclength of the predictor step that reached the point")}},
+                          {"kind", "h", "status", "iterations", "residual"}, false);
   s["TraceRecord"] = object(trace_props, {"iteration", "residual", "step", "angle", "distance_to_pi", "orthogonality_error", "seconds", "cpu_seconds"}, false);
   s["SolveResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"iterations", integer("iterations done")},
                              {"rate", nullable_number("convergence rate r (null when fewer than 3 iterations)")},
@@ -182,15 +202,16 @@ json schemas() {
                              {"seconds", number("wall time")},
                              {"cpu_seconds", number("solver CPU time of the whole solve (see TraceRecord.cpu_seconds)")},
                              {"linear_solver", json{{"type", "string"}}},
-                             {"continuation", object({{"stages", array_of(object({{"h", number("this stage's step size")},
-                                                                                   {"status", status},
-                                                                                   {"iterations", integer("")},
-                                                                                   {"residual", nullable_number("||f(y)|| at this stage's h")},
-                                                                                   {"start", enum_schema(kAllStageStarts, "where the stage's iteration started: the request's start (z or y0), the previous stage's root, the identity of z's component, a seeded restart")},
-                                                                                   {"globalization", globalization},
-                                                                                   {"restart", integer("start = restart only: the seed k of the start y0 exp(x_k)")}},
-                                                                                  {}, false))},
-                                                      {"total_iterations", integer("summed over the stages")}},
+                             {"branch", enum_schema(kAllBranches, "which root y is: continued = reached by following z's branch of roots from h = 0 to h, no fold passed; other = known not to be that root; unchecked = not checked (a plain solve)")},
+                             {"found_by", enum_schema(kAllSearches, "which search produced y: the plain solve, continuation, or a multistart start")},
+                             {"distance_from_z", number("||y - z||_F")},
+                             {"total_iterations", integer("iterations of the whole search: the returned solve's, the path's correctors' and every other solve's")},
+                             {"fold_h", nullable_number("continuation only: the h at which z's branch turns back (status fold when below the requested h)")},
+                             {"path_h", nullable_number("continuation only: the h the path reached when it stopped short of h")},
+                             {"multistart_start", integer("found_by multistart: the seed k of the start y0 exp(x_k)")},
+                             {"multistart_tries", integer("seeded starts solved")},
+                             {"continuation", object({{"stages", array_of(ref("PathPoint"))},
+                                                      {"total_iterations", integer("the same as the result's total_iterations")}},
                                                      {}, false)}},
                             {"status", "reason", "iterations", "rate", "rate_reliable", "iterate", "residual", "floor",
                              "orthogonality_error", "z_adjustment", "reorthogonalisations", "y", "trace", "seconds",
@@ -236,38 +257,57 @@ json schemas() {
                         {"index", "count", "rows"})}},
       {"grid", "rows", "roots", "methods", "complete", "seconds"}, false);
   s["StepRecord"] = object({{"step", integer("1-based")}, {"t", number("")}, {"iterations", integer("summed over stages")},
-                            {"residual", nullable_number("")}, {"status", status}, {"energy", nullable_number("rigid body kinetic energy")}},
+                            {"residual", nullable_number("")}, {"status", status},
+                            {"substeps", integer("steps taken inside this output step: more than 1 where halving kept the solution's branch "
+                                                 "(adaptive: 2, the half steps whose product is y)")},
+                            {"h", number("the step's size (adaptive: the accepted step)")},
+                            {"error_estimate", nullable_number("adaptive: the accepted step's scaled local error estimate "
+                                                               "(step doubling; at most 1); null with fixed steps")},
+                            {"rejected", integer("adaptive: tries rejected before this step was accepted")}},
                            {}, false);
+  s["StepRecord"]["properties"] = invariant_numbers(s["StepRecord"]["properties"], "", "", "at the step's end state: ");
   s["IntegrateResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"steps", array_of(ref("StepRecord"))},
                                  {"global_error", nullable_number("||y_N - y_ref(t_end)||_F")},
-                                 {"energy_drift", nullable_number("rigid body: max relative energy change")},
-                                 {"initial_energy", nullable_number("rigid body: kinetic energy at t = 0")},
                                  {"orthogonality_error", nullable_number("")},
                                  {"total_iterations", integer("iterations summed over every stage of every step")},
+                                 {"substeps", integer("steps taken, halved ones counted as theirs")},
                                  {"mean_iterations", nullable_number("total_iterations per step")},
                                  {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
                                  {"frame_steps", json{{"type", "array"}, {"items", integer("")},
                                                       {"description", "the step k of each frame (0: y(0)); the frames "
                                                                       "of render/frames with the same request"}}},
-                                 {"cpu_seconds", number("")}, {"reference_seconds", number("")}},
+                                 {"cpu_seconds", number("")}, {"reference_seconds", number("")},
+                                 {"adaptive", json{{"type", "boolean"}, {"description", "the steps were chosen by the error estimate (rtol/atol)"}}},
+                                 {"rejected", integer("adaptive: tries rejected, summed over the steps")}},
                                 {}, false);
+  s["IntegrateResult"]["properties"] =
+      invariant_numbers(invariant_numbers(s["IntegrateResult"]["properties"], "initial_", "", "at y(0): "), "", "_drift",
+                        "max over the steps of |I(y_k) - I(y(0))| / |I(y(0))| (not divided where I(y(0)) = 0), I = ");
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
-                                   {"points", array_of(object({{"h", number("")}, {"cpu_seconds", number("")},
+                                   {"points", array_of(object(invariant_numbers(json{{"h", number("")}, {"cpu_seconds", number("")},
                                                                {"error", nullable_number("global error")},
-                                                               {"status", status}, {"iterations", integer("")}}, {}, false))},
+                                                               {"status", status}, {"iterations", integer("")},
+                                                               {"substeps", integer("steps taken (halving included)")},
+                                                               {"tolerance", nullable_number("against tolerance: the run's rtol = atol (null with fixed steps; h is then the mean accepted step)")},
+                                                               {"rejected", integer("adaptive: tries rejected")},
+                                                               {"in_fit", json{{"type", "boolean"}, {"description", "the order is fitted from this point"}}},
+                                                               {"excluded", json{{"type", "string"}, {"description", "why the fit leaves the point out"}}}}, "", "_drift",
+                                                               "the run's drift (as IntegrateResult's) of "), {}, false))},
                                    {"fitted_order", nullable_number("observed order: least-squares slope of log error vs log h "
-                                                                    "over the converged points (null with fewer than two)")}},
+                                                                    "over the honest points (every stage on the solution's branch) in the "
+                                                                    "asymptotic range of the smallest h (null with fewer than two)")},
+                                   {"fit_h", array_of(number("an h the order is fitted from"))}},
                                   {}, false))},
        {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);
   s["SolveStreamRecord"] = json{
-      {"description", "One NDJSON line / SSE data field. type is iteration|cell|step|series|grid|row for progress records "
-                      "(the fields of TraceRecord, SweepCell, StepRecord, a series, BasinGrid or BasinRow; a basin "
+      {"description", "One NDJSON line / SSE data field. type is iteration|path_point|cell|step|series|grid|row for progress records "
+                      "(the fields of TraceRecord (path_point: a continuation path point, TraceRecord with path_point), SweepCell, StepRecord, a series, BasinGrid or BasinRow; a basin "
                       "stream's result is the summary: BasinResult without grid and rows), then exactly one terminal record: "
                       "result (the fields of the non-streamed result) or error (with an error object)."},
       {"type", "object"},
-      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "cell", "step", "series", "grid", "row", "result", "error"}}}},
+      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "path_point", "cell", "step", "series", "grid", "row", "result", "error"}}}},
                       {"error", ref("ErrorDetail")}}},
       {"required", {"type"}}};
   s["RenderFramesRequest"] = json{
@@ -297,8 +337,14 @@ json schemas() {
                       "||f(y_n)|| against the solver's own CPU time (TraceRecord.cpu_seconds), right panel against n."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_residuals))}};
+  s["RenderInvariantsRequest"] = json{
+      {"description", "An IntegrateRequest of a problem with invariants (rigid-body, heavy-top; else 422 naming "
+                      "problem) plus width/height (default " + size_text(kInvariantsFigure) + "). One line per "
+                      "invariant: |I(y_k) - I(y_0)| / |I(y_0)| against the step k, log scale; a run that does not converge: 422."},
+      {"type", "object"},
+      {"properties", properties(picture_rows(fields::render_invariants))}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
-  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
+  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, client_over_capacity, server_busy, invalid_header, too_many_headers, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
                              {"message", json{{"type", "string"}}}},
                             {"code", "field", "message"}, false);
@@ -312,13 +358,13 @@ std::string status_text(int status) {
     case 403: return "Cross-site request (Sec-Fetch-Site cross-site, or Origin not matching Host)";
     case 404: return "Not found";
     case 405: return "Method not allowed";
-    case 408: return "Request head or body not read within --request-read-timeout";
     case 411: return "Content-Length required (no Transfer-Encoding)";
     case 413: return "Body larger than --max-body, or output_too_large (--max-output-values, --max-image-pixels)";
     case 415: return "Body is not JSON, or is compressed";
     case 416: return "More than one byte range";
     case 422: return "Valid JSON, impossible request";
-    case 431: return "Headers beyond --max-header-bytes or --max-headers";
+    case 429: return "This client address already runs its share of long requests (half of --max-streams)";
+    case 431: return "More than 100 header fields";
     case 503: return "Over capacity, draining, or renderer unavailable";
     case 504: return "Deadline passed (--request-timeout; --sweep-timeout for sweeps and heatmaps)";
     default: return "Error";
@@ -352,7 +398,7 @@ json query_parameters(const json& all_schemas, const std::string& schema) {
 
 }  // namespace
 
-std::string openapi_document() {
+std::string openapi_document(const ServerOptions& options) {
   const json all = schemas();
   json paths = json::object();
   for (const auto& r : route_table()) {
@@ -399,7 +445,7 @@ std::string openapi_document() {
                                      "{\"error\":{\"code\",\"field\",\"message\"}}."}}},
            {"paths", paths},
            {"components", {{"schemas", all}}},
-           {"x-lienewton", openapi_labels()}};
+           {"x-lienewton", openapi_labels(options)}};
   return doc.dump(1, ' ', false, json::error_handler_t::replace);
 }
 

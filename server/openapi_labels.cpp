@@ -3,12 +3,15 @@
 #include <string>
 #include <utility>
 
+#include "core/invariants.hpp"
+#include "core/problems.hpp"
 #include "core/vocabulary.hpp"
 #include "render/basin_scene.hpp"
 #include "render/colormap.hpp"
 #include "render/heatmap_scene.hpp"
 #include "render/options.hpp"
 #include "render/series_style.hpp"
+#include "server/output_limits.hpp"
 
 namespace lienewton::service {
 namespace {
@@ -70,13 +73,21 @@ json basin_root_colors() {
 
 }  // namespace
 
-json openapi_labels() {
+json openapi_labels(const ServerOptions& options) {
   json methods = entries(kAllMethods);
   for (std::size_t i = 0; i < std::size(kAllMethods); ++i) methods[i]["uses_differential"] = uses_differential(kAllMethods[i]);
+  // A problem's group when it has one (heavy-top: SOxR) and the invariants its integrations report.
+  json problems = entries(kAllProblems);
+  for (std::size_t i = 0; i < std::size(kAllProblems); ++i) {
+    if (const auto group = required_group(kAllProblems[i])) problems[i]["group"] = *group;
+    json invariants = json::array();
+    for (Invariant v : invariants_of(kAllProblems[i])) invariants.push_back(std::string(to_string(v)));
+    problems[i]["invariants"] = std::move(invariants);
+  }
   json statuses = entries(kAllStatuses);
   for (std::size_t i = 0; i < std::size(kAllStatuses); ++i) statuses[i]["color"] = status_css(kAllStatuses[i]);
   return {{"enums",
-           {{"problem", entries(kAllProblems)},
+           {{"problem", problems},
             {"method", methods},
             {"differential", entries(kAllDifferentials)},
             {"integrator", entries(kAllIntegrators)},
@@ -84,14 +95,22 @@ json openapi_labels() {
             {"globalization", entries(kAllGlobalizations)},
             {"stopping", entries(kAllStoppings)},
             {"predictor", entries(kAllPredictors)},
-            {"stage_start", entries(kAllStageStarts)},
+            {"branch", entries(kAllBranches)},
+            {"found_by", entries(kAllSearches)},
+            {"path_point", entries(kAllPathPointKinds)},
+            {"invariant", entries(kAllInvariants)},
             {"status", statuses},
             {"heatmap_metric", entries(render::kAllHeatmapMetrics)}}},
           {"colors", {{"no_value", css(render::kNoValueColor)}, {"viridis", viridis_stops()},
                       {"basin_roots", basin_root_colors()}, {"basin_darkest", render::kBasinDarkest},
                       {"rate_range", {render::kRateColorLo, render::kRateColorHi}},
                       {"rate_outlier_dot", css(render::kOutlierDotColor)}}},
-          {"series_styles", series_styles()}};
+          {"series_styles", series_styles()},
+          // A basin map of k methods may have size^2 k basin_pixel_values <= max_values.
+          {"output_limits", {{"max_values", options.output.max_values}, {"basin_pixel_values", kBasinPixelValues},
+                             {"max_image_pixels", options.output.max_image_pixels},
+                             {"max_grid_cells", options.limits.max_grid_cells},
+                             {"request_seconds", options.request_timeout}, {"sweep_seconds", options.sweep_timeout}}}};
 }
 
 }  // namespace lienewton::service

@@ -9,10 +9,9 @@ namespace lienewton::service {
 namespace {
 
 // Values per step record and per sweep cell in the JSON result (step, t, iterations, residual, status,
-// energy; method, n, h, status, reason, iterations, rate, residual, seconds).
-constexpr double kStepValues = 6;
+// energy, substeps, h, error_estimate, rejected; method, n, h, status, reason, iterations, rate, residual, seconds).
+constexpr double kStepValues = 10;
 constexpr double kCellValues = 9;
-constexpr double kPixelValues = 3;  // a basin pixel: status, root, iterations
 
 void refuse_beyond(double values, const OutputLimits& limits, const char* field, const std::string& what) {
   if (values <= static_cast<double>(limits.max_values)) return;
@@ -32,9 +31,18 @@ void check_output(const SolveRequest& r, const OutputLimits& limits) {
 }
 
 void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
-  const double steps = std::ceil(r.t_end / r.h);
-  const double values = steps * kStepValues + (r.frames + 1.0) * r.problem.n * r.problem.n;
+  // Adaptive: at most max_steps records; frames: at most 2 frames + 1 states besides y(0).
+  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / r.h);
+  const double states = r.adaptive() ? 2.0 * r.frames + 2.0 : r.frames + 1.0;
+  const double values = steps * kStepValues + states * r.problem.n * r.problem.n;
   refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");
+}
+
+void fit_output(IntegrateRequest& r, const OutputLimits& limits) {
+  if (!r.adaptive()) return;
+  const double states = (2.0 * r.frames + 2.0) * r.problem.n * r.problem.n;
+  const double room = std::floor((static_cast<double>(limits.max_values) - states) / kStepValues);
+  if (room >= 1 && room < r.max_steps) r.max_steps = static_cast<int>(room);
 }
 
 void check_output(const SweepRequest& r, const OutputLimits& limits) {
@@ -44,7 +52,7 @@ void check_output(const SweepRequest& r, const OutputLimits& limits) {
 
 void check_output(const BasinRequest& r, const OutputLimits& limits) {
   const double pixels = static_cast<double>(r.size) * r.size * static_cast<double>(r.methods.size());
-  refuse_beyond(pixels * kPixelValues, limits, "size", "a " + std::to_string(r.size) + " x " + std::to_string(r.size) +
+  refuse_beyond(pixels * kBasinPixelValues, limits, "size", "a " + std::to_string(r.size) + " x " + std::to_string(r.size) +
                                                           " basin map of " + std::to_string(r.methods.size()) + " methods");
 }
 

@@ -12,6 +12,9 @@
 
 namespace lienewton::service {
 
+// Numbers a basin map's result holds per pixel and method (status, root, iterations).
+inline constexpr double kBasinPixelValues = 3;
+
 struct OutputLimits {
   std::size_t max_values = 1'000'000;        // numbers in one result (about 20 MB of JSON)
   std::size_t max_image_pixels = 4'194'304;  // width x height of one PNG (2048 x 2048)
@@ -19,6 +22,9 @@ struct OutputLimits {
 
 void check_output(const SolveRequest& request, const OutputLimits& limits);
 void check_output(const IntegrateRequest& request, const OutputLimits& limits);
+// Adaptive steps, whose number is not known ahead: lowers max_steps to the records that fit the cap with the
+// frames (a run that reaches it ends with status max_steps, naming the bound).
+void fit_output(IntegrateRequest& request, const OutputLimits& limits);
 void check_output(const SweepRequest& request, const OutputLimits& limits);
 void check_output(const BasinRequest& request, const OutputLimits& limits);
 // width x height of a render request, where both are given as integers (else the parser judges them).

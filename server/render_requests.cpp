@@ -11,6 +11,8 @@
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
 #include "core/work_precision.hpp"
+#include "render/invariants_scene.hpp"
+#include "render/log_axis.hpp"
 #include "render/residuals_scene.hpp"
 #include "render/work_precision_scene.hpp"
 #include "render/renderer.hpp"
@@ -72,12 +74,23 @@ std::string take_string(json& request, const char* field) {
   return v;
 }
 
-// Frames are rotations: SO(3), the default group at n = 3.
-void check_so3(const ProblemSpec& p) {
-  const std::string why = "rotation frames are drawn for SO(3) only: ";
-  if (p.group != ProblemSpec{}.group)
-    throw ApiError(422, "unprocessable", "group", why + "group must be " + ProblemSpec{}.group);
+// Frames are the body axes of each state's rotation part, as its group extracts it (GroupFamily::rotation): on
+// groups with one (SO(3), SE(3), SO(3) x R^3, SE(3) x R^6), where n is 3.
+void check_rotations(const ProblemSpec& p) {
+  const GroupFamily& family = group_family(p.group);
+  const std::string why = "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR): ";
   if (p.n != 3) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
+  const int size = family.matrix_size(p.n);
+  if (!family.rotation(p.n, Eigen::MatrixXd::Identity(size, size)))
+    throw ApiError(422, "unprocessable", "group", why + family.title(p.n) + " has none");
+}
+
+// The rotation part of each state (check_rotations has accepted the group).
+std::vector<Eigen::Matrix3d> rotations(const ProblemSpec& p, const std::vector<Eigen::MatrixXd>& states) {
+  const GroupFamily& family = group_family(p.group);
+  std::vector<Eigen::Matrix3d> out;
+  for (const Eigen::MatrixXd& y : states) out.push_back(*family.rotation(p.n, y));
+  return out;
 }
 
 void before_work(const RenderHooks& hooks) {
@@ -112,22 +125,89 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
 
 std::string group_name(const ProblemSpec& p) { return group_family(p.group).title(p.n); }
 
+// The picture's format: png unless the request says svg.
+render::ImageFormat take_format(json& request) {
+  const std::string format = take_string(request, "format");
+  if (format.empty() || format == "png") return render::ImageFormat::png;
+  if (format == "svg") return render::ImageFormat::svg;
+  throw FieldError("invalid_field", "format", "format must be png or svg");
+}
+
 std::string number_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", x);
   return text;
 }
 
+// "lo…hi" of a grid's values, or its one value.
+template <class T, class Text>
+std::string span(const std::vector<T>& values, Text text) {
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  return *lo == *hi ? text(*lo) : text(*lo) + "\u2026" + text(*hi);
+}
+
+std::string field_name(const ProblemSpec& p) { return p.g ? "your g(y)" : std::string(to_string(p.kind)); }
+
+bool any_newton(const std::vector<Method>& methods) {
+  return std::any_of(methods.begin(), methods.end(), [](Method m) { return m != Method::fixed_point; });
+}
+
+// The solver's facts a picture depends on: the differential (when a Newton method forms one), tol, the iteration
+// cap and the variants.
+std::string solver_facts(const SolverOptions& s, bool newton) {
+  std::string out;
+  if (newton) out += "differential " + std::string(words(s.differential).short_label) + " \u00b7 ";
+  out += "tol " + number_text(s.tol) + " \u00b7 at most " + std::to_string(s.max_iterations) + " iterations";
+  if (s.globalization != Globalization::none) out += " \u00b7 " + std::string(words(s.globalization).short_label);
+  if (s.continuation) out += " \u00b7 continuation in h";
+  return out;
+}
+
+// The group of a grid over N: "SO(3)" for one N, "SO(N)" for several.
+std::string group_text(const ProblemSpec& p, const std::vector<int>& n) {
+  const std::string first = group_family(p.group).title(n.front());
+  if (std::all_of(n.begin(), n.end(), [&](int v) { return v == n.front(); })) return first;
+  const std::size_t paren = first.find('(');
+  return paren == std::string::npos ? first : first.substr(0, paren) + "(N)";
+}
+
+// The heatmap's caption: from the sweep request, or, for a finished sweep, from its cells alone.
+render::Caption heatmap_caption(const SweepResult& result, const SweepRequest* request, render::HeatmapMetric metric) {
+  std::vector<int> n;
+  std::vector<double> h;
+  for (const SweepCell& c : result.cells) {
+    n.push_back(c.n);
+    h.push_back(c.h);
+  }
+  if (n.empty()) return {};  // nothing to draw: the renderer refuses it
+  const std::string grid = "N = " + span(n, [](int v) { return std::to_string(v); }) + " \u00b7 h = " + span(h, render::power_of_two_label);
+  const std::string colour = "colour: " + std::string(render::words(metric).label);
+  if (!request) return {"Where each method converges", grid + " \u00b7 " + colour};
+  return {"Where each method converges: " + field_name(request->problem) + " on " + group_text(request->problem, n),
+          grid + " \u00b7 " + solver_facts(request->solver, any_newton(request->methods)) + " \u00b7 " + colour};
+}
+
+// The basin map's caption: the problem, its group and h, the square of starts and the solver's facts.
+render::Caption basins_caption(const BasinRequest& r, const BasinResult& map) {
+  const SolveRequest& s = r.solve;
+  const std::string size = std::to_string(map.grid.axis.size());
+  const std::string radius = number_text(map.grid.radius);
+  return {"From which starts each method converges: " + field_name(s.problem) + " on " + group_name(s.problem) +
+              ", h = " + render::power_of_two_label(s.h),
+          size + " \u00d7 " + size + " starts y\u2080 = z exp(a B\u2081 + b B\u2082), a, b in [\u2212" + radius + ", " +
+              radius + "] \u00b7 " + solver_facts(s.solver, any_newton(r.methods))};
+}
+
 // The figure's PNG; a figure with nothing to draw (every run failed) is a 422.
 template <class MakeFigure>
-std::vector<unsigned char> draw_figure(render::Renderer& renderer, MakeFigure make) {
+std::vector<unsigned char> draw_figure(render::Renderer& renderer, render::ImageFormat format, MakeFigure make) {
   render::Figure figure;
   try {
     figure = make();
   } catch (const std::invalid_argument& e) {
     throw ApiError(422, "unprocessable", "", std::string("nothing to draw: ") + e.what());
   }
-  return renderer.figure_png(figure);
+  return renderer.figure_png(figure, format);
 }
 
 }  // namespace
@@ -136,7 +216,8 @@ const std::vector<fields::Field>& picture_fields() {
   using fields::Field;
   using fields::Type;
   static const std::vector<Field> rows = [] {
-    constexpr fields::Routes all = fields::render_frames | fields::render_heatmap | fields::render_basins | fields::render_work_precision | fields::render_residuals;
+    constexpr fields::Routes all = fields::render_frames | fields::render_heatmap | fields::render_basins |
+                                   fields::render_work_precision | fields::render_residuals | fields::render_invariants;
     const Field size{.name = "width", .type = Type::integer, .routes = all,
                      .description = "image width in pixels (heatmap and basins: 0 or absent, automatic)",
                      .minimum = static_cast<double>(render::kMinImageSize),
@@ -168,13 +249,20 @@ const std::vector<fields::Field>& picture_fields() {
               .description = "what is drawn: a solve's iterates or an integration's states (default: integrate when "
                              "any of integrator, t_end, frames is given)",
               .values = {"solve", "integrate"}},
-        size, height, azimuth, elevation,
+        size, height,
+        Field{.name = "format", .type = Type::string, .routes = all,
+              .description = "png (the default), or svg: the same picture with its text and lines as vectors (a "
+                             "basin map's panels as embedded PNG); the answer's type is image/svg+xml",
+              .values = {"png", "svg"}},
+        azimuth, elevation,
         Field{.name = "upto", .type = Type::integer, .routes = fields::render_frames,
               .description = "draw frames 0..upto only, upto bold (a slider over iterates or time steps); 422 if "
                              "there are not that many",
               .minimum = 0.0},
         Field{.name = "sweep", .type = Type::object, .routes = fields::render_heatmap,
-              .description = "a finished sweep to draw instead of a sweep request", .schema = "SweepResult"},
+              .description = "a finished sweep to draw instead of running the sweep request; with the request's "
+                             "fields beside it, the title names them (each cell must lie in that request's grid)",
+              .schema = "SweepResult"},
         Field{.name = "metric", .type = Type::string, .routes = fields::render_heatmap,
               .description = "what colours a converged cell", .values = fields::names(render::kAllHeatmapMetrics)},
         methods, differentials};
@@ -190,15 +278,17 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   options.height = take_int(request, "height", options.height, false);
   options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
   options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
+  const render::ImageFormat format = take_format(request);
   // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
   const int upto = take_int(request, "upto", -1, false);
+  render::Caption caption;
   const auto draw = [&](std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start) {
     if (upto >= static_cast<int>(frames.size())) {
       throw ApiError(422, "unprocessable", "upto", "upto must be below the number of frames (" +
                                                        std::to_string(frames.size()) + ")");
     }
     if (upto >= 0) frames.resize(static_cast<std::size_t>(upto) + 1);
-    return renderer.frames_png(frames, start, options);
+    return renderer.frames_png(frames, start, options, caption, format);
   };
   // An integrate request is told apart by kind, or by a field only integrate requests have.
   std::string kind = take_string(request, "kind");
@@ -209,24 +299,28 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   Eigen::Matrix3d start;
   if (kind == "solve") {
     SolveRequest r = solve_request_from_json(request, limits);
-    check_so3(r.problem);
+    check_rotations(r.problem);
     r.solver.include_iterates = true;
     validate(r);
     before_work(hooks);
     SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
-    for (const auto& t : result.trace) {
-      if (t.y.rows() == 3 && t.y.cols() == 3) frames.emplace_back(t.y);
-    }
-    if (frames.empty()) frames.emplace_back(result.y);
-    start = r.problem.z ? Eigen::Matrix3d(*r.problem.z) : frames.front();
+    std::vector<Eigen::MatrixXd> states;
+    for (const auto& t : result.trace)
+      if (t.y.size() > 0) states.push_back(t.y);
+    if (states.empty()) states.push_back(result.y);
+    frames = rotations(r.problem, states);
+    start = r.problem.z ? rotations(r.problem, {*r.problem.z}).front() : frames.front();
+    caption = {"Iterates y\u2080, y\u2081, \u2026 of " + std::string(words(r.solver.method).label),
+               field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
+                   " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
     return draw(frames, start);
   }
   if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
   if (!request.contains("frames")) request["frames"] = 16;
   IntegrateRequest r = integrate_request_from_json(request, limits);
-  check_so3(r.problem);
+  check_rotations(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   r.reference = false;  // the picture needs no global error
   validate(r);
@@ -234,11 +328,11 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   bool stopped = false;
   IntegrateResult result = integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
-  for (const auto& m : result.frames) {
-    if (m.rows() == 3 && m.cols() == 3) frames.emplace_back(m);
-  }
-  if (frames.empty()) frames.emplace_back(result.y);
+  frames = rotations(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
   start = frames.front();
+  caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) + ", " + std::string(words(r.solver.method).label),
+             field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
+                 ", t_end = " + number_text(r.t_end) + " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
   return draw(frames, start);
 }
 
@@ -248,6 +342,7 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
   render::HeatmapOptions options;
   options.width = take_int(request, "width", 0, true);
   options.height = take_int(request, "height", 0, true);
+  const render::ImageFormat format = take_format(request);
   if (const std::string metric = take_string(request, "metric"); !metric.empty()) {
     auto parsed = render::heatmap_metric_from_string(metric);
     if (!parsed) {
@@ -258,14 +353,26 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
     options.metric = *parsed;
   }
   if (request.contains("sweep")) {
-    if (request.size() != 1) {
-      for (const auto& [key, _] : request.items()) {
-        if (key != "sweep") throw FieldError("unknown_field", key, "unknown field " + key + " next to sweep");
+    const SweepResult result = sweep_result_from_json(request["sweep"], limits);
+    request.erase("sweep");
+    if (request.empty()) {
+      before_work(hooks);
+      return renderer.heatmap_png(result, options, heatmap_caption(result, nullptr, options.metric), format);
+    }
+    // The request the cells came from, for the title: it must at least hold every cell in its grid.
+    SweepRequest r = sweep_request_from_json(request, limits);
+    validate(r);
+    for (std::size_t i = 0; i < result.cells.size(); ++i) {
+      const SweepCell& c = result.cells[i];
+      const auto in = [](const auto& list, const auto& v) { return std::find(list.begin(), list.end(), v) != list.end(); };
+      if (!in(r.methods, c.method) || !in(r.n, c.n) || !in(r.h, c.h)) {
+        throw FieldError("invalid_field", "sweep.cells[" + std::to_string(i) + "]",
+                         "this cell (" + std::string(to_string(c.method)) + ", n " + std::to_string(c.n) + ", h " +
+                             number_text(c.h) + ") is not in the grid of the request beside it");
       }
     }
-    const SweepResult result = sweep_result_from_json(request["sweep"], limits);
     before_work(hooks);
-    return renderer.heatmap_png(result, options);
+    return renderer.heatmap_png(result, options, heatmap_caption(result, &r, options.metric), format);
   }
   SweepRequest r = sweep_request_from_json(request, limits);
   validate(r);
@@ -277,7 +384,7 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped) throw RenderCancelled{};
-  return renderer.heatmap_png(result, options);
+  return renderer.heatmap_png(result, options, heatmap_caption(result, &r, options.metric), format);
 }
 
 std::vector<unsigned char> render_basins(json request, const Limits& limits, render::Renderer& renderer,
@@ -285,6 +392,7 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
   const int width = take_int(request, "width", 0, true);
   const int height = take_int(request, "height", 0, true);
+  const render::ImageFormat format = take_format(request);
   BasinRequest r = basin_request_from_json(request, limits);
   validate(r);
   before_work(hooks);
@@ -303,7 +411,7 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped || !map.complete) throw RenderCancelled{};
-  return renderer.basins_png(map, width, height);
+  return renderer.basins_png(map, width, height, basins_caption(r, map), format);
 }
 
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
@@ -311,6 +419,7 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
   const int width = take_int(request, "width", kWorkPrecisionFigure.width, false);
   const int height = take_int(request, "height", kWorkPrecisionFigure.height, false);
+  const render::ImageFormat format = take_format(request);
   WorkPrecisionRequest r = work_precision_request_from_json(request, limits);
   validate(r);
   before_work(hooks);
@@ -320,9 +429,35 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped) throw RenderCancelled{};
-  const std::string title = "Work-precision: " + std::string(to_string(r.problem.kind)) + " on " +
+  const std::string title = "Work-precision: " + r.problem.name() + " on " +
                             group_name(r.problem) + ", t_end = " + number_text(r.t_end);
-  return draw_figure(renderer, [&] { return render::work_precision_scene(result, title, width, height); });
+  return draw_figure(renderer, format, [&] { return render::work_precision_scene(result, title, width, height); });
+}
+
+std::vector<unsigned char> render_invariants(json request, const Limits& limits, render::Renderer& renderer,
+                                             const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const int width = take_int(request, "width", kInvariantsFigure.width, false);
+  const int height = take_int(request, "height", kInvariantsFigure.height, false);
+  const render::ImageFormat format = take_format(request);
+  IntegrateRequest r = integrate_request_from_json(request, limits);
+  r.reference = false;  // the picture needs no global error
+  validate(r);
+  if (!has_invariants(r.problem))
+    throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body and "
+                                                    "heavy-top do)");
+  before_work(hooks);
+  bool stopped = false;
+  const IntegrateResult result =
+      integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+  if (stopped) throw RenderCancelled{};
+  if (result.status != Status::converged)
+    throw ApiError(422, "unprocessable", "h", "the integration ended " + std::string(to_string(result.status)) +
+                                                  ": " + result.reason);
+  const std::string title = "Invariants' drift: " + std::string(words(r.integrator).short_label) + ", " +
+                            field_name(r.problem) + " on " + group_name(r.problem) + ", h = " +
+                            render::power_of_two_label(r.h) + ", t_end = " + number_text(r.t_end);
+  return draw_figure(renderer, format, [&] { return render::invariants_scene(result, title, width, height); });
 }
 
 std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
@@ -330,6 +465,7 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
   const int width = take_int(request, "width", kResidualsFigure.width, false);
   const int height = take_int(request, "height", kResidualsFigure.height, false);
+  const render::ImageFormat format = take_format(request);
   const std::vector<Method> methods = take_enum_list(request, "methods", method_from_string, kAllMethods);
   const std::vector<Differential> differentials =
       take_enum_list(request, "differentials", differential_from_string, kAllDifferentials);
@@ -361,9 +497,9 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
       runs.push_back(std::move(run));
     }
   }
-  const std::string title = "\u2016f(y\u2099)\u2016 against solver CPU time: " + std::string(to_string(base.problem.kind)) + " on " +
+  const std::string title = "\u2016f(y\u2099)\u2016 against solver CPU time: " + base.problem.name() + " on " +
                             group_name(base.problem) + ", h = " + number_text(base.h);
-  return draw_figure(renderer, [&] { return render::residuals_scene(runs, title, width, height); });
+  return draw_figure(renderer, format, [&] { return render::residuals_scene(runs, title, width, height); });
 }
 
 }  // namespace lienewton::service

@@ -41,6 +41,7 @@ struct FigureSize {
 };
 inline constexpr FigureSize kWorkPrecisionFigure{960, 640};
 inline constexpr FigureSize kResidualsFigure{1200, 520};
+inline constexpr FigureSize kInvariantsFigure{960, 560};
 
 // Work-precision diagram: a WorkPrecisionRequest plus width/height (default kWorkPrecisionFigure).
 std::vector<unsigned char> render_work_precision(json request, const Limits& limits, render::Renderer& renderer,
@@ -49,6 +50,11 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
 // methods/differentials lists (default: all; fixed point once) and width/height (default kResidualsFigure).
 std::vector<unsigned char> render_residuals(json request, const Limits& limits, render::Renderer& renderer,
                                             const RenderHooks& hooks);
+
+// Invariants' drift over time: an IntegrateRequest of a problem with invariants (422 naming problem otherwise),
+// plus width/height (default kInvariantsFigure).
+std::vector<unsigned char> render_invariants(json request, const Limits& limits, render::Renderer& renderer,
+                                             const RenderHooks& hooks);
 
 // The picture options of the render routes, rows of the request contract (core/fields.hpp) like the fields of
 // the requests they draw: each render route takes these rows plus its base request's.

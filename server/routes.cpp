@@ -5,8 +5,8 @@
 namespace lienewton::service {
 namespace {
 
-const std::vector<int> kJsonPostErrors{400, 403, 408, 411, 413, 415, 422, 431, 503, 504};
-const std::vector<int> kGetWorkErrors{400, 403, 408, 413, 422, 431, 503, 504};
+const std::vector<int> kJsonPostErrors{400, 403, 411, 413, 415, 422, 429, 431, 503, 504};
+const std::vector<int> kGetWorkErrors{400, 403, 413, 422, 429, 431, 503, 504};
 
 std::vector<RouteSpec> build_table() {
   const std::string ndjson = "application/x-ndjson";
@@ -25,42 +25,48 @@ std::vector<RouteSpec> build_table() {
        "it reached or its failure; NDJSON streams a grid record, one row record per finished row, then the summary",
        BodyKind::json, true, "BasinRequest", {"application/json", ndjson}, "BasinResult", kJsonPostErrors},
       {&ApiHandlers::integrate, "POST", "/api/v1/integrate",
-       "Time stepping with an implicit Lie group integrator; NDJSON streams one step record per step",
+       "Time stepping with a Lie group integrator (implicit; rkmk4 explicit); NDJSON streams one step record per step",
        BodyKind::json, true, "IntegrateRequest", {"application/json", ndjson}, "IntegrateResult", kJsonPostErrors},
       {&ApiHandlers::work_precision, "POST", "/api/v1/work-precision",
        "CPU time vs global error per (integrator, method, differential); NDJSON streams one series record each",
        BodyKind::json, true, "WorkPrecisionRequest", {"application/json", ndjson}, "WorkPrecisionResult",
        kJsonPostErrors},
       {&ApiHandlers::render_frames, "POST", "/api/v1/render/frames",
-       "PNG of the rotation frames of an SO(3) solve (iterates) or integration (trajectory)", BodyKind::json, true,
-       "RenderFramesRequest", {"image/png"}, "", kJsonPostErrors},
+       "PNG of the rotation frames (each state's rotation part: SO(3), or R of SE, SOxR, SExR) of a solve (iterates) or integration (trajectory)", BodyKind::json, true,
+       "RenderFramesRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_frames, "GET", "/api/v1/render/frames",
        "GET form of render/frames for <img src> (query parameters mirror RenderFramesRequest)", BodyKind::none, true,
-       "RenderFramesRequest", {"image/png"}, "", kGetWorkErrors},
+       "RenderFramesRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_heatmap, "POST", "/api/v1/render/heatmap",
-       "PNG heatmap of a sweep (a sweep request, or {\"sweep\": <sweep result>})", BodyKind::json, true,
-       "RenderHeatmapRequest", {"image/png"}, "", kJsonPostErrors},
+       "PNG heatmap of a sweep (a sweep request, or {\"sweep\": <sweep result>}, or both: the result titled by its request)", BodyKind::json, true,
+       "RenderHeatmapRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_heatmap, "GET", "/api/v1/render/heatmap",
        "GET form of render/heatmap for <img src> (query parameters mirror the sweep request)", BodyKind::none, true,
-       "RenderHeatmapRequest", {"image/png"}, "", kGetWorkErrors},
+       "RenderHeatmapRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_basins, "POST", "/api/v1/render/basins",
        "PNG basin map: one panel per method, roots in distinct hues shaded by iterations, failures in their colours",
-       BodyKind::json, true, "RenderBasinsRequest", {"image/png"}, "", kJsonPostErrors},
+       BodyKind::json, true, "RenderBasinsRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_basins, "GET", "/api/v1/render/basins",
        "GET form of render/basins for <img src> (query parameters mirror BasinRequest)", BodyKind::none, true,
-       "RenderBasinsRequest", {"image/png"}, "", kGetWorkErrors},
+       "RenderBasinsRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_work_precision, "POST", "/api/v1/render/work-precision",
        "PNG work-precision diagram: solver CPU time vs global error, one line per choice through its h, fitted order "
-       "in the legend", BodyKind::json, true, "RenderWorkPrecisionRequest", {"image/png"}, "", kJsonPostErrors},
+       "in the legend", BodyKind::json, true, "RenderWorkPrecisionRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_work_precision, "GET", "/api/v1/render/work-precision",
        "GET form of render/work-precision for <img src> (choices as JSON text)", BodyKind::none, true,
-       "RenderWorkPrecisionRequest", {"image/png"}, "", kGetWorkErrors},
+       "RenderWorkPrecisionRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
+      {&ApiHandlers::render_invariants, "POST", "/api/v1/render/invariants",
+       "PNG of the drift of a problem's invariants (energy, vertical momentum) over one integration's time",
+       BodyKind::json, true, "RenderInvariantsRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
+      {&ApiHandlers::render_invariants, "GET", "/api/v1/render/invariants",
+       "GET form of render/invariants for <img src> (query parameters mirror RenderInvariantsRequest)", BodyKind::none,
+       true, "RenderInvariantsRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_residuals, "POST", "/api/v1/render/residuals",
        "PNG of ||f(y_n)|| vs solver CPU time beside ||f(y_n)|| vs iteration for every method x differential of one "
-       "equation", BodyKind::json, true, "RenderResidualsRequest", {"image/png"}, "", kJsonPostErrors},
+       "equation", BodyKind::json, true, "RenderResidualsRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_residuals, "GET", "/api/v1/render/residuals",
        "GET form of render/residuals for <img src> (query parameters mirror RenderResidualsRequest)", BodyKind::none,
-       true, "RenderResidualsRequest", {"image/png"}, "", kGetWorkErrors},
+       true, "RenderResidualsRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::livez, "GET", "/livez", "Liveness: answers while the process serves requests", BodyKind::none, false,
        "", {"application/json"}, "Health", {}, true},
       {&ApiHandlers::readyz, "GET", "/readyz", "Readiness: 503 while draining for shutdown", BodyKind::none, false, "",

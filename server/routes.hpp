@@ -34,7 +34,8 @@ const std::vector<RouteSpec>& route_table();
 const RouteSpec* find_route(const std::string& method, const std::string& path);
 bool path_is_routed(const std::string& path);
 
-// The OpenAPI 3.0 document for route_table().
-std::string openapi_document();
+struct ServerOptions;
+// The OpenAPI 3.0 document for route_table(), with the running server's limits in x-lienewton.
+std::string openapi_document(const ServerOptions& options);
 
 }  // namespace lienewton::service

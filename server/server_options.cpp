@@ -1,5 +1,6 @@
 #include "server/server_options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -18,21 +19,20 @@ struct Flag {
 constexpr Flag kFlags[] = {
     {"--host", "LIENEWTON_HOST", "address to bind (default 127.0.0.1; the container uses 0.0.0.0)"},
     {"--port", "LIENEWTON_PORT", "TCP port (default 8080)"},
-    {"--threads", "LIENEWTON_THREADS", "workers serving complete requests; idle and slow connections hold none (default 8)"},
+    {"--threads", "LIENEWTON_THREADS", "workers; each serves one connection from accept to close (default 64)"},
     {"--max-n", "LIENEWTON_MAX_N", "largest matrix size N accepted (default 64)"},
     {"--max-iterations", "LIENEWTON_MAX_ITERATIONS", "largest max_iterations accepted (default 10000)"},
     {"--max-grid", "LIENEWTON_MAX_GRID", "largest sweep grid (methods x n x h cells) accepted (default 5000)"},
     {"--request-timeout", "LIENEWTON_REQUEST_TIMEOUT", "seconds a request (or stream) may run; then 504 (default 30)"},
-    {"--sweep-timeout", "LIENEWTON_SWEEP_TIMEOUT", "seconds a sweep or heatmap render (JSON or stream) may run; then 504 (default 600)"},
+    {"--sweep-timeout", "LIENEWTON_SWEEP_TIMEOUT", "seconds a sweep or heatmap render (JSON or stream) may run; then 504 (default 120)"},
     {"--web-root", "LIENEWTON_WEB_ROOT", "directory of the dashboard (default: the repository's web/ next to the binary, or ./web)"},
     {"--max-body", "LIENEWTON_MAX_BODY", "largest request body in bytes; larger gets 413 (default 1048576)"},
-    {"--max-streams", "LIENEWTON_MAX_STREAMS", "concurrent long requests (streams, solves, sweeps, renders); more get 503 (default threads - 2)"},
+    {"--max-streams", "LIENEWTON_MAX_STREAMS", "concurrent long requests (streams, solves, sweeps, renders); more get 503; one client address may run half of them, more get 429 (default 6, at most threads - 2)"},
     {"--render-workers", "LIENEWTON_RENDER_WORKERS", "offscreen GL contexts for PNG renders (default 1)"},
-    {"--request-read-timeout", "LIENEWTON_REQUEST_READ_TIMEOUT", "seconds a request's head and body may take to arrive; then 408 (default 10)"},
-    {"--max-header-bytes", "LIENEWTON_MAX_HEADER_BYTES", "largest request line + headers in bytes; larger gets 431 (default 16384)"},
-    {"--max-headers", "LIENEWTON_MAX_HEADERS", "most header fields per request; more get 431 (default 100)"},
-    {"--max-connections", "LIENEWTON_MAX_CONNECTIONS", "open connections; more are answered 503 and closed (default 512, at most 900)"},
-    {"--max-connections-per-client", "LIENEWTON_MAX_CONNECTIONS_PER_CLIENT", "open connections per client address; more get 503 (default 64)"},
+    {"--read-timeout", "LIENEWTON_READ_TIMEOUT", "seconds any one read or write on a connection may stall; then it is closed (default 5)"},
+    {"--max-connections", "LIENEWTON_MAX_CONNECTIONS", "connections held at once; more wait in the listen backlog (default 512, at most 900)"},
+    {"--max-queued", "LIENEWTON_MAX_QUEUED", "connections waiting for a worker; more are answered 503 (default 4 x threads)"},
+    {"--trusted-front", "LIENEWTON_TRUSTED_FRONT", "comma-separated addresses of the front (nginx) whose X-Real-IP names the client (default: none)"},
     {"--max-output-values", "LIENEWTON_MAX_OUTPUT_VALUES", "most numbers one result may hold (iterates x N^2, frames, steps, cells); more get 413 (default 1000000)"},
     {"--max-image-pixels", "LIENEWTON_MAX_IMAGE_PIXELS", "largest width x height of a PNG render; larger gets 413 (default 4194304)"},
     {"--shutdown-grace", "LIENEWTON_SHUTDOWN_GRACE", "seconds open streams may finish after SIGTERM before they are ended with an error record (default 3)"},
@@ -86,18 +86,21 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
     if (!parse_int(value, 1, 1024, o.max_streams)) return bad("an integer in [1, 1024]");
   } else if (name == "--render-workers") {
     if (!parse_int(value, 1, 64, o.render_workers)) return bad("an integer in [1, 64]");
-  } else if (name == "--request-read-timeout") {
-    if (!parse_double(value, 0.1, 3600, o.request_read_timeout)) return bad("a number of seconds in [0.1, 3600]");
-  } else if (name == "--max-header-bytes") {
-    if (!parse_int(value, 1024, 1 << 20, i)) return bad("an integer number of bytes in [1024, 1048576]");
-    o.max_header_bytes = static_cast<std::size_t>(i);
-  } else if (name == "--max-headers") {
-    if (!parse_int(value, 8, 10000, o.max_headers)) return bad("an integer in [8, 10000]");
+  } else if (name == "--read-timeout") {
+    if (!parse_double(value, 0.1, 3600, o.read_timeout)) return bad("a number of seconds in [0.1, 3600]");
   } else if (name == "--max-connections") {
     // cpp-httplib 0.11.4 (select-based) answers 500 for descriptors >= FD_SETSIZE (1024).
     if (!parse_int(value, 4, 900, o.max_connections)) return bad("an integer in [4, 900]");
-  } else if (name == "--max-connections-per-client") {
-    if (!parse_int(value, 1, 900, o.max_connections_per_client)) return bad("an integer in [1, 900]");
+  } else if (name == "--max-queued") {
+    if (!parse_int(value, 1, 100000, o.max_queued)) return bad("an integer in [1, 100000]");
+  } else if (name == "--trusted-front") {
+    o.trusted_fronts.clear();
+    for (std::size_t start = 0; start <= value.size();) {
+      const std::size_t comma = std::min(value.find(',', start), value.size());
+      if (comma > start) o.trusted_fronts.push_back(value.substr(start, comma - start));
+      start = comma + 1;
+    }
+    if (o.trusted_fronts.empty()) return bad("a comma-separated list of addresses");
   } else if (name == "--max-output-values") {
     if (!parse_int(value, 1000, 1 << 30, i)) return bad("an integer in [1000, 2^30]");
     o.output.max_values = static_cast<std::size_t>(i);
@@ -116,10 +119,11 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
 }  // namespace
 
 int ServerOptions::effective_max_streams() const {
-  // Two workers stay free for short requests (/metrics, static files); /livez and /readyz have their own.
-  const int cap = std::max(1, threads - 2);
-  return max_streams > 0 ? std::min(max_streams, cap) : cap;
+  // Two workers at least stay free for short requests (/livez, /metrics, static files).
+  return std::max(1, std::min(max_streams, threads - 2));
 }
+
+int ServerOptions::max_streams_per_client() const { return std::max(1, effective_max_streams() / 2); }
 
 std::string server_usage() {
   std::string s =

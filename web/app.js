@@ -1,5 +1,6 @@
 // Entry point: builds the five panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
-// Home/End) and the URL hash, so a panel can be linked to and survives a reload.
+// Home/End) and the URL: the hash names the panel, the query its settings (?n=8&h=2#solve), so a panel and its
+// form can be linked to and survive a reload.
 import { createBasinsPanel } from './panels/basins.js';
 import { createComparePanel } from './panels/compare.js';
 import { createSolvePanel } from './panels/solve.js';
@@ -16,7 +17,13 @@ function select(tab, focus = true) {
     document.getElementById(t.getAttribute('aria-controls')).hidden = !on;
   }
   if (focus) tab.focus();
-  history.replaceState(null, '', `#${tab.getAttribute('aria-controls')}`);
+  keepInUrl(tab.getAttribute('aria-controls'));
+}
+
+// The shown panel's settings that differ from its defaults, in the query string.
+function keepInUrl(id) {
+  const q = panels[id]?.share.params().toString() ?? '';
+  history.replaceState(null, '', `${location.pathname}${q ? `?${q}` : ''}#${id}`);
 }
 
 document.querySelector('[role="tablist"]').addEventListener('keydown', (e) => {
@@ -34,24 +41,30 @@ document.querySelector('.skip-link').addEventListener('click', (e) => {
   tabs.find((t) => t.getAttribute('aria-selected') === 'true').focus();
 });
 
-const solve = createSolvePanel(document.querySelector('#solve .panel-body'));
-createComparePanel(document.querySelector('#compare .panel-body'));
-createStabilityPanel(document.querySelector('#stability .panel-body'), {
-  openSolve(request) {
-    select(tabs[0]);
-    solve.open(request);
-  },
-});
-createBasinsPanel(document.querySelector('#basins .panel-body'), {
-  openSolve(request) {
-    select(tabs[0]);
-    solve.open(request);
-  },
-});
-createSpeedPanel(document.querySelector('#speed .panel-body'));
+const body = (id) => document.querySelector(`#${id} .panel-body`);
+const openSolve = (request) => {
+  select(tabs[0]);
+  panels.solve.open(request);
+};
+const panels = {
+  solve: createSolvePanel(body('solve')),
+  compare: createComparePanel(body('compare')),
+  stability: createStabilityPanel(body('stability'), { openSolve }),
+  basins: createBasinsPanel(body('basins'), { openSolve }),
+  speed: createSpeedPanel(body('speed')),
+};
 
 const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
-select(fromHash() ?? tabs[0], false);
+// The settings in the address belong to the panel it names.
+const opened = fromHash() ?? tabs[0];
+panels[opened.getAttribute('aria-controls')].share.apply(new URLSearchParams(location.search));
+for (const id of Object.keys(panels)) {
+  const form = document.querySelector(`#${id} form`);
+  const follow = () => { if (!document.getElementById(id).hidden) keepInUrl(id); };
+  form.addEventListener('input', follow);
+  form.addEventListener('change', follow);
+}
+select(opened, false);
 // A #panel address picks the tab; the page still opens at the top (header and tab bar in view on a phone),
 // and the fragment is not where Tab starts: focusing the body makes the skip link the first Tab stop.
 function toTop() {

@@ -16,8 +16,9 @@
 //   and the words a reason uses for them: kAngleName ("rotation angle"), kLogBoundaryName ("pi");
 // and what the requests need of it: element(m) and matrix(y) convert between a request's matrix (rows) and an
 // Element; random(seed), the seeded start; not_an_element(m, name) and not_reachable(y0, z), why a request's
-// z or y0 is refused (empty: accepted), in the group's words; component_identity(z), the identity of z's
-// component (where continuation starts from the stiff end); kAlgebraDimension, dim() as a formula in n.
+// z or y0 is refused (empty: accepted), in the group's words; kAlgebraDimension, dim() as a formula in n.
+// Optionally rotation(y), the 3 x 3 rotation part of an element (SO(3), SE(3) and products with them first), which
+// pictures of frames draw; a group without it is refused there.
 // Adding a group: see docs/architecture.md ("Where a change goes").
 #include <Eigen/Core>
 #include <concepts>
@@ -65,7 +66,6 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
   { g.random(seed) } -> std::convertible_to<typename G::Element>;
   { g.not_an_element(m, name) } -> std::same_as<std::string>;
   { g.not_reachable(m, m) } -> std::same_as<std::string>;
-  { g.component_identity(y) } -> std::convertible_to<typename G::Element>;
 };
 
 // Coordinates and operators sized by the group (fixed-size types ignore the size arguments).

@@ -36,12 +36,6 @@ struct RotationFacts {
     if (!(y0.determinant() * z.determinant() < 0)) return {};
     return "y0 must lie in the component of z (det y0 = det z): z^-1 y0 must be a rotation";
   }
-  // I when det z > 0, else diag(-1, 1, ..., 1): an equilibrium (g = 0) of both paper problems.
-  Element component_identity(const Element& z) const {
-    Element j = self().identity();
-    if (z.determinant() < 0) j.row(0) *= -1.0;
-    return j;
-  }
   double principal_angle(double theta) const { return std::abs(std::remainder(theta, 2.0 * kLogRadius)); }
 
  private:

@@ -48,6 +48,7 @@ struct SO3Group : RotationFacts<SO3Group, Eigen::Matrix3d> {
 
   double defect(const Element& y) const { return (y.transpose() * y - Element::Identity()).norm(); }
   Element project(const Element& y) const { return orthogonal_polar_factor(y); }
+  Eigen::Matrix3d rotation(const Element& y) const { return y; }  // the body axes a picture of frames draws
 };
 static_assert(LieGroup<SO3Group>);
 

@@ -1,67 +1,61 @@
 #pragma once
-// Continuation in the step size. The implicit Euler equation
-//   f_h(y) = log(z^-1 y) - h g(y) = 0                                                     (3.6)
-// has the root y = z at h = 0, and its root moves continuously with h while h g(y) stays inside log's branch.
-// A continued solve tries, in this order, until one converges at the requested h:
-//   1. the plain solve at h from where eq starts (a cell it converges on costs nothing more and keeps its y);
-//   2. with a globalization, the paper's full-step Newton at h from the same start (so a globalised continued
-//      solve never loses a cell the plain method converges on);
-//   3. the path from h = 0: h_0 < h_1 < ... < h_K = h, each stage started at the previous stage's root,
-//        h_k = h 2^(k-K),  K = max(0, ceil(log2(h / kContinuationStart))),
-//      while no stage fails: h_0 <= 1/16 and every stage doubles h;
-//   4. the path from the stiff end: as h -> infinity the roots of (1.1) tend to equilibria of y' = y g(y)
-//      (g(y) = 0), and the component identity J of z (I, or diag(-1, 1, ..., 1) when det z < 0) is one for
-//      both paper problems. Solve at h from J; failing that at 2h, 4h, ..., 2^kStiffDoublings h from J until a
-//      root is found, then halve back down to h, each stage from the previous root;
-//   5. the paths from below: at h/2, h/4, ... down to kContinuationStart, the solve from the given start and then
-//      from J; from the first root found, the path up to h (doubling, as in 3.). A root z's path cannot reach
-//      (it folds back or leaves log's branch) often lies on a branch that a smaller step meets and that then
-//      continues to h: on paper-linear N = 9, h = 64..512, J at h/2..h/16; N = 14, h = 32..1024, z at 16.
-//   6. with opt.restarts = K > 0, the restarts: up to K solves at h from the seeded starts y_0 exp(x_k),
-//      k = 0 .. K-1 (restart_start.hpp), with the requested globalization and at most kRestartIterations
-//      iterations each, until one converges. Where every path fails, roots may still lie away from all of them:
-//      paper-linear N = 11, h = 32 has roots that 1 % of such starts reach (line search); every start that
-//      reached one did so within 27 iterations.
-// Every stage of 3., 4. and 5. is tried as in 1. and 2.: with a globalization, a stage that finds no root is solved
-// again with full steps (a descent method stalls where the path of roots folds back; full steps jump on).
-// A path's stage that fails shrinks its ratio to the square root (2, 1.41, 1.19, ... going up; 1/2, 0.71, ...
-// coming down) and is retried that much beyond the last root (a failed first stage of the path from 0: at a
-// quarter of its h). After kMaxFailedStages failures, a ratio within 1% of 1 or kMaxContinuationStages stages,
-// the path's last stage is the requested h itself, started at the last root found. A stage whose solve ends
-// converged or stagnated (a root to rounding: at large h tol can be below the floor) is a root to go on from.
-// Only a solve at the requested h decides the result: its status, y, residual and trace are the plain solver's,
-// so a continued result is as honest as a plain one; result.continuation lists every stage (the tries at h
-// included, with where each started and its globalization), and the reason says which stage its iteration count
-// is and what the whole search cost.
+// Continuation (request field "continuation"): the root of the implicit Euler equation (1.1) that continues y = z
+// from h = 0, found by following z's branch of roots and nothing else. Section 5: "fairly good initial values are
+// available due to the continuity of the solution". In the algebra's coordinates, y = z exp(v), the roots are the
+// zeros of
+//   F(v, tau) = v - tau g(z exp v)                                                               (3.21)
+// with F(0, 0) = 0, D_v F = I - tau dg_y dexp_v (3.22) and D_tau F = -g(y). Pseudo-arclength continuation of the
+// curve x(s) = (v(s), tau(s)) (Keller 1977; Allgower & Georg, "Numerical Continuation Methods", 1990, ch. 2):
+//   tangent     t with [D_v F  D_tau F] t = 0, ||t|| = 1, oriented along the previous one (at (0, 0): (g(z), 1));
+//   predictor   x + ds t, its move in v at most kMaxPredictorMove;
+//   corrector   Newton on the bordered system F(x) = 0, t^T (x - x_pred) = 0, accepted only when its corrections
+//               contract by kMaxContraction (affine covariant Newton: Deuflhard, "Newton Methods for Nonlinear
+//               Problems", 2004, sec. 5.1) and stay within kAcceptRadius of the predictor's move in v, and the
+//               tangent turns by less than kMaxTurn; otherwise ds is halved;
+//   fold        the tangent's tau-component changes sign: the branch turns back at fold_h (interpolated), and no
+//               root continued from z exists beyond it;
+//   at h        when the predictor passes h, the method's own solve at exactly h starts from the predictor there
+//               (the explicit Lie-Euler value when the path starts at (0, 0)); its root is the continued one when
+//               the same contraction and radius tests hold of its iterates. Otherwise the path's corrector at
+//               fixed tau = h computes the continued root and the method starts there; failing that the path goes
+//               on with a shorter step.
+// The path's own Newton uses the exact D_v F (the search must know the branch's geometry, whatever differential
+// the method uses); the caller times the whole search. Only the method's solve at h decides the result's status, y, residual and trace.
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/cancellation.hpp"
 #include "core/solver_options.hpp"
 #include "equation.hpp"
-#include "restart_start.hpp"
+#include "iteration_monitor.hpp"
+#include "newton_step.hpp"
 #include "solve_result.hpp"
 
 namespace lienewton {
 
-inline constexpr double kContinuationStart = 1.0 / 16;
-inline constexpr int kMaxContinuationStages = 64;
-inline constexpr int kMaxFailedStages = 8;
-inline constexpr double kSmallestContinuationRatio = 1.01;
-inline constexpr int kStiffDoublings = 4;
-inline constexpr int kRestartIterations = 32;
+inline constexpr int kMaxPathPoints = 400;          // predictor-corrector steps, accepted or not
+inline constexpr int kMaxCorrectorIterations = 8;
+inline constexpr double kMaxContraction = 0.5;      // Newton: each correction at most half the previous one
+inline constexpr double kFixedPointContraction = 0.95;  // the fixed point contracts linearly (Banach)
+inline constexpr double kAcceptRadius = 0.25;       // a root at most a quarter of the predictor's move in v from it
+inline constexpr double kAcceptFloor = 1e-3;        // (plus this, for steps along which v hardly moves) ...
+inline constexpr double kMaxCorrection = 0.5;       // ... and never farther than this (other roots lie O(1) away)
+inline constexpr double kMaxPredictorMove = 0.5;    // a predictor step, to h included, moves v by at most this
+inline constexpr double kFirstStep = 1.0 / 16;      // a path step at most doubles tau, and is at most this from 0
+inline constexpr double kMaxTurn = 0.5;             // radians between successive tangents
+inline constexpr int kFoldBisections = 30;          // to locate a fold ...
+inline constexpr double kFoldBracket = 1e-5;        // ... within this arclength (relative): fold_h to ~1e-10
 
-// The first stage's h: h 2^-K, the largest h / 2^k not above kContinuationStart (h itself when h is below it).
-inline double first_continuation_step(double h) {
-  if (h <= kContinuationStart) return h;
-  return std::ldexp(h, -static_cast<int>(std::ceil(std::log2(h / kContinuationStart))));
-}
+// How far from a prediction that moved by `move` (in the algebra) its corrected root may lie.
+inline double acceptance_radius(double move) { return std::min(kMaxCorrection, kAcceptRadius * move + kAcceptFloor); }
 
-// The records of a stage, tagged with its h, for the caller's callback.
+// The records of a solve at step h, tagged with h, for the caller's callback.
 inline TraceCallback tagged_with_step(const TraceCallback& cb, double h) {
   if (!cb) return {};
   return [&cb, h](const TraceRecord& r) {
@@ -71,181 +65,374 @@ inline TraceCallback tagged_with_step(const TraceCallback& cb, double h) {
   };
 }
 
-// The searches of the file comment over one equation. solve(equation, options, callback) is the plain solver of
-// one stage; the callback sees the records of every stage, each tagged with its stage's h (the iteration count
-// restarts at 0 with every stage).
-template <LieGroup G, class Solve>
-class ContinuationSearch {
+// Whether a solve's iterates converged as they do near a regular root: a root (converged or at its rounding
+// floor) reached by steps that contract as Newton's do (the fixed point's: as a contraction). Steps below
+// kNegligibleStep are not compared: they cannot move y to another root, and at large h rounding makes them wander.
+inline constexpr double kNegligibleStep = 1e-8;
+inline bool contracted_to_root(const SolveResult& r, Method method) {
+  if (!is_root(r)) return false;
+  const double theta = method == Method::fixed_point ? kFixedPointContraction : kMaxContraction;
+  const double rounding = kNegligibleStep;
+  double previous = std::numeric_limits<double>::infinity();
+  for (std::size_t n = 1; n <= static_cast<std::size_t>(r.iterate) && n < r.trace.size(); ++n) {
+    const double step = r.trace[n].step;
+    if (step > rounding && step > theta * previous) return false;
+    previous = step;
+  }
+  return true;
+}
+
+template <LieGroup G>
+class BranchPath {
  public:
   using Element = typename G::Element;
+  using Vector = typename G::Vector;
+  // The method's solve of an equation (started where it says), with its callback.
+  using Solve = std::function<SolveResult(const Equation<G>&, const TraceCallback&)>;
 
-  ContinuationSearch(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb, Solve solve)
-      : eq_(eq), opt_(opt), cb_(cb), solve_(std::move(solve)), h_(eq.h()) {}
+  // eq: the implicit Euler equation at the requested h; method: the request's (for the contraction test);
+  // first_from_z: the first solve at h starts at z itself instead of the tangent's prediction (predictor none).
+  BranchPath(const Equation<G>& eq, Method method, const TraceCallback& cb, Solve solve, bool first_from_z = false)
+      : eq_(eq), group_(eq.group()), method_(method), cb_(cb), solve_(std::move(solve)), h_(eq.h()),
+        q_(eq.group().dim()), first_from_z_(first_from_z),
+        dense_(!detail::use_krylov(eq.group(), LinearSolver::auto_select)) {}
 
   SolveResult run() {
-    SolveResult r = try_at(h_, nullptr, StageStart::given);  // 1. and 2.
-    if (settled(r)) return finish(std::move(r));
-    if (first_continuation_step(h_) < h_) {  // 3. (below kContinuationStart there is no path from 0)
-      r = walk(std::nullopt, 0.0, first_continuation_step(h_), 2.0);
-      if (settled(r)) return finish(std::move(r));
+    Point x{zero_vector(group_), 0.0};
+    Tangent t = tangent_at_start();
+    if (!dense_) return finish(without_path(t));
+    double ds = std::numeric_limits<double>::infinity();  // the first try goes straight to h
+    bool first = true;
+    for (int k = 0; k < kMaxPathPoints; ++k) {
+      if (cancellation_requested()) return stopped(x, "cancelled");
+      ds = std::min(ds, kMaxPredictorMove / std::max(t.v.norm(), 1e-300));
+      if (t.th > 0.0 && x.h + ds * t.th >= h_) {
+        const double to_h = (h_ - x.h) / t.th;
+        if (auto r = at_h(x, t, to_h, first)) return finish(std::move(*r));
+        first = false;
+        ds = to_h / 2;
+        if (cancellation_requested()) return stopped(x, "cancelled");
+      }
+      ds = std::min(ds, std::max(x.h, kFirstStep) / std::max(t.th, 1e-300));  // tau at most doubles
+      if (ds < kSmallestStep * (1.0 + x.h + x.v.norm())) return stopped(x, "its step length fell below its smallest");
+      const Point pred{x.v + ds * t.v, x.h + ds * t.th};
+      const auto next = correct(pred, t, ds * t.v.norm());
+      if (!next) {
+        ds /= 2;
+        continue;
+      }
+      const Tangent tn = tangent_at(*next, t);
+      if (!tn.valid || tn.v.dot(t.v) + tn.th * t.th < std::cos(kMaxTurn)) {
+        ds /= 2;
+        continue;
+      }
+      if (tn.th <= 0.0 && t.th > 0.0) {  // the branch turned back in h between x and next
+        const auto [before, fold_h] = turning_point(x, t, Bracket{0.0, t.th, ds, tn.th, next->point});
+        if (fold_h < h_) return fold(before, fold_h);
+        ds = (h_ - x.h) / t.th;  // the branch reaches h before it turns: go straight there
+        continue;
+      }
+      record(PathPointKind::path, next->point, tn.th, ds, next->iterations, next->residual, Status::converged);
+      if (!cb_ok_) return stopped(next->point, "cancelled");
+      x = next->point;
+      t = tn;
+      ds *= next->iterations <= 2 ? 2.0 : next->iterations <= 4 ? 1.0 : 0.5;
     }
-    r = from_stiff_end(std::move(r));  // 4.
-    if (settled(r)) return finish(std::move(r));
-    r = from_below(std::move(r));  // 5.
-    if (settled(r)) return finish(std::move(r));
-    return finish(from_restarts(std::move(r)));  // 6.
+    return stopped(x, "it took " + std::to_string(kMaxPathPoints) + " steps");
   }
 
  private:
-  bool stopped(const SolveResult& r) const {
-    return r.status == Status::cancelled || cancellation_requested();
-  }
-  // The search ends here: converged at h, or stopped.
-  bool settled(const SolveResult& r) const {
-    return stopped(r) || (result_h_ == h_ && r.status == Status::converged);
-  }
-  // A root to go on from: converged, or stagnated at its rounding floor.
-  static bool is_root(const SolveResult& r) {
-    return r.status == Status::converged || r.status == Status::stagnated;
+  static constexpr double kSmallestStep = 1e-10;
+
+  struct Point {
+    Vector v;
+    double h = 0;
+  };
+  struct Tangent {
+    Vector v;
+    double th = 0;
+    bool valid = true;
+  };
+  struct Corrected {
+    Point point;
+    int iterations = 0;
+    double residual = 0;
+  };
+
+  // F(v, tau) and its Jacobian [D_v F  D_tau F], bordered by the row c^T: the corrector's and the tangent's matrix.
+  struct Linearized {
+    Eigen::VectorXd f;  // F(v, tau)
+    Eigen::MatrixXd m;  // (q + 1) x (q + 1); the last row is the caller's
+    double scale = 0;   // 1 + ||v|| + tau ||g||: what F's rounding is relative to
+  };
+  Linearized linearize(const Point& x) const {
+    const Equation<G> e = eq_.at_step(x.h);
+    const auto p = e.at_algebra(x.v);
+    const Vector g = e.field()->g(p.y);
+    Linearized l;
+    l.f = Eigen::VectorXd(p.f);
+    l.m = Eigen::MatrixXd::Zero(q_ + 1, q_ + 1);
+    l.m.topLeftCorner(q_, q_) = Eigen::MatrixXd(e.dftilde_matrix(p, Differential::exact));
+    l.m.topRightCorner(q_, 1) = -Eigen::VectorXd(g);
+    l.scale = 1.0 + x.v.norm() + x.h * g.norm();
+    return l;
   }
 
-  // The solve at h from start (null: where eq starts) with the requested options and, with a globalization,
-  // when that fails, with the paper's full steps (plain Newton crosses log's cut where a descent method will not).
-  // It fails at the requested h when it does not converge, at any other h when it finds no root to go on from.
-  SolveResult try_at(double h, const Element* start, StageStart start_name) {
-    SolveResult r = stage(h, start, start_name, opt_);
-    const bool enough = h == h_ ? settled(r) : stopped(r) || is_root(r);
-    if (enough || opt_.globalization == Globalization::none) return r;
-    SolverOptions plain = opt_;
-    plain.globalization = Globalization::none;
-    return stage(h, start, start_name, plain);
+  Tangent tangent_at_start() const {
+    Tangent t{Vector(eq_.field()->g(eq_.z())), 1.0};
+    const double norm = std::sqrt(t.v.squaredNorm() + 1.0);
+    t.v /= norm;
+    t.th /= norm;
+    return t;
   }
 
-  // One stage: eq at step h from start (null: where eq starts), recorded on the path.
-  SolveResult stage(double h, const Element* start, StageStart start_name, const SolverOptions& o,
-                    std::optional<int> restart = std::nullopt) {
-    Equation<G> e = eq_.at_step(h);
-    if (start) e.start_at(*start);
-    SolverOptions monotone = o;  // a stage follows the root near its start: no watchdog jumps to another branch
-    monotone.watchdog = false;
-    SolveResult r = solve_(e, monotone, tagged_with_step(cb_, h));
-    path_.push_back({h, r.status, r.iterations, r.residual, start_name, o.globalization, restart});
-    result_h_ = h;
-    seconds_ += r.seconds;
-    cpu_seconds_ += r.cpu_seconds;
+  // The unit tangent at x oriented along previous: [D_v F  D_tau F; previous^T] t = (0, 1).
+  Tangent tangent_at(const Corrected& c, const Tangent& previous) const {
+    Linearized l = linearize(c.point);
+    l.m.bottomLeftCorner(1, q_) = Eigen::VectorXd(previous.v).transpose();
+    l.m(q_, q_) = previous.th;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(q_ + 1);
+    rhs[q_] = 1.0;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(l.m);
+    const Eigen::VectorXd t = lu.solve(rhs);
+    Tangent out;
+    const double norm = t.norm();
+    out.valid = t.allFinite() && norm > 0.0;
+    if (!out.valid) return out;
+    out.v = Vector(t.head(q_) / norm);
+    out.th = t[q_] / norm;
+    return out;
+  }
+
+  // Newton on F(x) = 0, c^T (x - pred) = 0 from pred (c = the tangent: pseudo-arclength; c = (0, 1): tau fixed),
+  // accepted as in the file comment; move: the predictor's move in v.
+  std::optional<Corrected> correct(const Point& pred, const Tangent& c, double move) const {
+    const double radius = acceptance_radius(move);
+    Point x = pred;
+    double previous = std::numeric_limits<double>::infinity();
+    for (int it = 0; it <= kMaxCorrectorIterations; ++it) {
+      throw_if_cancelled();
+      if (x.h < 0.0) return std::nullopt;
+      Linearized l = linearize(x);
+      if (!l.f.allFinite()) return std::nullopt;
+      const double residual = l.f.norm();
+      if (residual <= kPathTolerance * l.scale) return Corrected{x, it, residual};
+      if (it == kMaxCorrectorIterations) return std::nullopt;
+      l.m.bottomLeftCorner(1, q_) = Eigen::VectorXd(c.v).transpose();
+      l.m(q_, q_) = c.th;
+      Eigen::VectorXd rhs(q_ + 1);
+      rhs.head(q_) = -l.f;
+      rhs[q_] = -(c.v.dot(x.v - pred.v) + c.th * (x.h - pred.h));
+      const Eigen::VectorXd dx = Eigen::PartialPivLU<Eigen::MatrixXd>(l.m).solve(rhs);
+      const double step = dx.norm();
+      if (!dx.allFinite() || (it > 0 && step > kMaxContraction * previous &&
+                              step > 1e3 * std::numeric_limits<double>::epsilon() * l.scale))
+        return std::nullopt;
+      previous = step;
+      x.v += Vector(dx.head(q_));
+      x.h += dx[q_];
+      if ((x.v - pred.v).norm() > radius) return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  // The fold between x (arclength 0 along t) and a point past it: the bracket [s_lo, s_hi] of the sign change of
+  // the tangent's h-component, narrowed by bisection (each point corrected from x along t), then h at the zero of
+  // tau'(s), taken linear across the bracket. Near a fold h(s) = h* - c (s - s*)^2, so a bracket of width w puts
+  // h* within c w^2. Returns the bracket's lower point (the branch's last point before the fold) and h*.
+  struct Bracket {
+    double s_lo, th_lo, s_hi, th_hi;
+    Point hi;
+  };
+  std::pair<Point, double> turning_point(const Point& x, const Tangent& t, Bracket b) const {
+    Point lo = x;
+    for (int k = 0; k < kFoldBisections && b.s_hi - b.s_lo > kFoldBracket * (1.0 + b.s_hi); ++k) {
+      const double mid = 0.5 * (b.s_lo + b.s_hi);
+      const auto c = correct(Point{x.v + mid * t.v, x.h + mid * t.th}, t, mid * t.v.norm());
+      if (!c) break;
+      const Tangent tc = tangent_at(*c, t);
+      if (!tc.valid) break;
+      if (tc.th > 0.0) {
+        b.s_lo = mid, b.th_lo = tc.th, lo = c->point;
+      } else {
+        b.s_hi = mid, b.th_hi = tc.th, b.hi = c->point;
+      }
+    }
+    const double zero = (b.s_hi - b.s_lo) * b.th_lo / (b.th_lo - b.th_hi);
+    return {lo, std::max({lo.h + b.th_lo * zero / 2, lo.h, b.hi.h})};
+  }
+
+  // The method's solve at h from the tangent's prediction (or from z, the first time, with first_from_z), then
+  // from the path's own root at h; a result when one of them reached the continued root, or when the method
+  // fails from that root itself (the method's answer at h, which the caller labels).
+  std::optional<SolveResult> at_h(const Point& x, const Tangent& t, double to_h, bool first) {
+    const Point pred{x.v + to_h * t.v, h_};
+    const double move = to_h * t.v.norm();
+    const double radius = acceptance_radius(move);
+    const Element y_pred = group_.times_exp(eq_.z(), pred.v);
+    const bool from_z = first && first_from_z_;
+    if (group_.angle(group_.spectral(pred.v)) < G::kLogRadius) {
+      SolveResult r = solve_from(from_z ? eq_.z() : y_pred);
+      if (is_continued(r, pred, radius)) return labelled(std::move(r), Branch::continued);
+      spent(r);
+    }
+    const Tangent fixed_h{zero_vector(group_), 1.0};
+    const auto root = correct(pred, fixed_h, move);
+    if (!root) return std::nullopt;
+    record(PathPointKind::path, root->point, t.th, to_h, root->iterations, root->residual, Status::converged);
+    const Element y_root = group_.times_exp(eq_.z(), root->point.v);
+    if (group_.angle(group_.spectral(root->point.v)) >= G::kLogRadius) return beyond_log(root->point);
+    SolveResult r = solve_from(y_root);
+    const double near = 1e-6 * (1.0 + root->point.v.norm());
+    if (is_continued(r, root->point, near)) return labelled(std::move(r), Branch::continued);
+    // The method does not keep the continued root from the root itself: its answer, and that it is not z's.
+    const Branch branch = is_root(r) ? Branch::other : Branch::unchecked;
+    r.reason = "the method, started at the root continued from z (||F|| = " + format_number(root->residual) +
+               "), ended: " + r.reason;
+    return labelled(std::move(r), branch);
+  }
+
+  // Where Newton goes matrix-free (large N), the path's dense bordered systems would cost O(q^3) each, longer than
+  // any deadline allows between two polls: only the method's solve at h from the tangent's prediction, accepted by
+  // the same test when that prediction moves v by at most kMaxPredictorMove; otherwise the method's solve from the
+  // given start, unchecked.
+  SolveResult without_path(const Tangent& t) {
+    const double to_h = h_ / t.th;
+    const double move = to_h * t.v.norm();
+    const Point pred{to_h * t.v, h_};
+    if (move <= kMaxPredictorMove && group_.angle(group_.spectral(pred.v)) < G::kLogRadius) {
+      SolveResult r = solve_from(first_from_z_ ? eq_.z() : group_.times_exp(eq_.z(), pred.v));
+      if (is_continued(r, pred, acceptance_radius(move))) return labelled(std::move(r), Branch::continued);
+      spent(r);
+    }
+    SolveResult r = solve_from(eq_.start());
+    r.path_h = 0.0;
+    r.reason = "continuation without the path (its dense systems are beyond the matrix-free size N > " +
+               std::to_string(kKrylovThreshold) + "), so which root this is was not checked; " + r.reason;
+    return labelled(std::move(r), Branch::unchecked);
+  }
+
+  SolveResult solve_from(const Element& start) {
+    Equation<G> e = eq_;
+    e.start_at(start);
+    SolveResult r = solve_(e, tagged_with_step(cb_, h_));
+    record(PathPointKind::final, Point{}, 0.0, 0.0, r.iterations, r.residual, r.status);
     return r;
   }
 
-  // From root (the root at h = reached; none: eq's start, the root at h = 0) to h_ in steps of ratio (> 1 going
-  // up, < 1 coming down), first to target; the last stage's result.
-  SolveResult walk(std::optional<Element> root, double reached, double target, double ratio) {
-    const auto toward_h = [&](double x) { return ratio > 1.0 ? std::min(h_, x) : std::max(h_, x); };
-    const int first = static_cast<int>(path_.size());
-    int failures = 0;
-    bool final_try = false;  // the path is stuck or long: solve at h from the last root
-    for (;;) {
-      if (static_cast<int>(path_.size()) - first + 1 >= kMaxContinuationStages || failures >= kMaxFailedStages)
-        final_try = true;
-      if (final_try) target = h_;
-      SolveResult r = root ? try_at(target, &*root, StageStart::root) : try_at(target, nullptr, StageStart::given);
-      if (settled(r) || final_try) return r;
-      if (is_root(r)) {
-        root = Element(r.y);
-        reached = target;
-        target = toward_h(ratio * target);
-        continue;
-      }
-      ++failures;
-      if (!root) {
-        target /= 4.0;
-        continue;
-      }
-      ratio = ratio > 1.0 ? std::sqrt(ratio) : 1.0 / std::sqrt(1.0 / ratio);  // coming down: 1 / the ratio going up
-      if (std::abs(std::log(ratio)) < std::log(kSmallestContinuationRatio)) final_try = true;
-      target = toward_h(ratio * reached);
+  // Whether r's y is the root nearest the prediction pred (within radius): the tests of the file comment, and
+  // its coordinates v = log(z^-1 y) within radius of pred's.
+  bool is_continued(const SolveResult& r, const Point& pred, double radius) const {
+    if (!contracted_to_root(r, method_)) return false;
+    try {
+      double angle = 0;
+      const Vector v = group_.log_vector(group_.compose(group_.inverse(eq_.z()), Element(r.y)), angle);
+      return (v - pred.v).norm() <= radius;
+    } catch (const LogDomainError&) {
+      return false;
     }
   }
 
-  // 4. of the file comment; last: the given start's last try at h, returned when this path finds no root.
-  SolveResult from_stiff_end(SolveResult last) {
-    const Element j = eq_.component_identity();
-    SolveResult r = try_at(h_, &j, StageStart::identity);
-    if (settled(r)) return r;
-    for (int k = 1; k <= kStiffDoublings; ++k) {
-      const double big_h = std::ldexp(h_, k);
-      if (big_h > kLargestStiffStep) break;
-      SolveResult up = try_at(big_h, &j, StageStart::identity);
-      if (stopped(up)) return up;
-      if (is_root(up)) return walk(Element(up.y), big_h, std::max(h_, big_h / 2), 0.5);
+  void spent(const SolveResult& r) { extra_iterations_ += r.iterations; }
+
+  void record(PathPointKind kind, const Point& x, double dh_ds, double ds, int iterations, double residual,
+              Status status) {
+    PathPoint p;
+    p.kind = kind;
+    p.h = kind == PathPointKind::final ? h_ : x.h;
+    if (kind != PathPointKind::final) {
+      p.distance = x.v.norm();
+      p.angle = group_.angle(group_.spectral(x.v));
+      p.dh_ds = dh_ds;
+      p.step_length = ds;
+      extra_iterations_ += iterations;
     }
-    // No root above h: the answer stays the last try from the given start (its failure class says more of it).
-    result_h_ = h_;
-    return last;
+    p.iterations = iterations;
+    p.residual = residual;
+    p.status = status;
+    points_.push_back(p);
+    if (cb_ && kind != PathPointKind::final) {
+      TraceRecord rec;
+      rec.iteration = static_cast<int>(points_.size()) - 1;
+      rec.residual = residual;
+      rec.angle = p.angle;
+      rec.log_boundary_distance = log_boundary_distance<G>(group_.principal_angle(p.angle));
+      rec.stage_h = p.h;
+      rec.path_point = p;
+      cb_ok_ = cb_(rec) && cb_ok_;
+    }
   }
 
-  // 5. of the file comment; last: the answer so far, returned when no root below h leads up to it.
-  SolveResult from_below(SolveResult last) {
-    const Element j = eq_.component_identity();
-    for (double low = h_ / 2; low >= kContinuationStart; low /= 2) {
-      for (const Element* start : {static_cast<const Element*>(nullptr), &j}) {
-        SolveResult r = try_at(low, start, start ? StageStart::identity : StageStart::given);
-        if (stopped(r)) return r;
-        if (!is_root(r)) continue;
-        r = walk(Element(r.y), low, std::min(h_, 2 * low), 2.0);
-        if (settled(r)) return r;
-      }
-    }
-    result_h_ = h_;
-    return last;
+  // A result whose y is the point x of the path (a fold, a stop), described at the requested h.
+  SolveResult at_point(const Point& x, Status status) const {
+    SolveResult r;
+    r.status = status;
+    r.y = group_.matrix(group_.times_exp(eq_.z(), x.v));
+    const auto p = eq_.at(Element(r.y), Equation<G>::Need::residual);
+    r.residual = p.in_domain ? p.residual : std::numeric_limits<double>::quiet_NaN();
+    r.orthogonality_error = group_.defect(Element(r.y));
+    r.z_adjustment = eq_.z_adjustment();
+    return r;
   }
 
-  // 6. of the file comment; last: the answer so far, returned when no restart converges.
-  SolveResult from_restarts(SolveResult last) {
-    SolverOptions brief = opt_;
-    brief.max_iterations = std::min(opt_.max_iterations, kRestartIterations);
-    for (int k = 0; k < opt_.restarts; ++k) {
-      const Element start = restart_start(eq_.group(), eq_.start(), k);
-      SolveResult r = stage(h_, &start, StageStart::restart, brief, k);
-      if (settled(r)) return r;
-    }
-    result_h_ = h_;
-    return last;
+  SolveResult fold(const Point& x, double fold_h) {
+    record(PathPointKind::fold, x, 0.0, 0.0, 0, 0.0, Status::fold);
+    SolveResult r = at_point(x, Status::fold);
+    r.fold_h = fold_h;
+    r.reason = "z's branch of roots turns back at h = " + format_number(fold_h) + " < " + format_number(h_) +
+               ": no root continued from z exists at h; returned the branch's point at h = " + format_number(x.h) +
+               ", whose ||f(y)|| at h is " + format_number(r.residual);
+    return finish(labelled(std::move(r), Branch::other));
   }
 
-  SolveResult finish(SolveResult result) {
-    if (result_h_ != h_) {  // cancelled on the way: the returned y's residual at the requested h
-      const auto p = eq_.at(Element(result.y), Equation<G>::Need::residual);
-      result.status = Status::cancelled;
-      result.residual = p.in_domain ? p.residual : std::numeric_limits<double>::quiet_NaN();
-      result.algebra_residual.reset();
-      result.reason = "cancelled during continuation, at the stage h = " + std::to_string(result_h_) +
-                      " of " + std::to_string(h_) + ": " + result.reason;
-    }
-    for (TraceRecord& rec : result.trace) rec.stage_h = result_h_;
-    result.seconds = seconds_;  // the whole search's time: what the answer cost
-    result.cpu_seconds = cpu_seconds_;
-    result.continuation = std::move(path_);
-    if (result.continuation.size() > 1)
-      result.reason += "; the iterations of the last of " + std::to_string(result.continuation.size()) +
-                       " continuation stages, " + std::to_string(result.total_iterations()) + " over all";
-    return result;
+  // The continued root at h has left log's principal branch: y solves (1.1), f of (3.6) cannot see it.
+  SolveResult beyond_log(const Point& x) const {
+    SolveResult r = at_point(x, Status::off_branch);
+    r.reason = "the root continued from z has h g(y) beyond " + std::string(G::kAngleName) + " " +
+               G::kLogBoundaryName + ": y solves y = z exp(h g(y)), but log(z^-1 y) != h g(y) and ||f(y)|| = " +
+               format_number(r.residual);
+    return labelled(std::move(r), Branch::continued);
   }
 
-  static constexpr double kLargestStiffStep = 1e6;  // the largest h a request may give
+  // The path stopped short of h: the method's solve at h from the given start, unchecked.
+  SolveResult stopped(const Point& x, const std::string& why) {
+    SolveResult r = cancellation_requested() || !cb_ok_ ? at_point(x, Status::cancelled) : solve_from(eq_.start());
+    if (r.status == Status::cancelled && r.reason.empty()) r.reason = "cancelled during continuation";
+    r.path_h = x.h;
+    r.reason = "continuation stopped at h = " + format_number(x.h) + " (" + why + "); " + r.reason;
+    return finish(labelled(std::move(r), Branch::unchecked));
+  }
+
+  static SolveResult labelled(SolveResult r, Branch branch) {
+    r.branch = branch;
+    r.found_by = Search::continuation;
+    return r;
+  }
+
+  SolveResult finish(SolveResult r) {
+    for (TraceRecord& rec : r.trace) rec.stage_h = h_;
+    r.continuation = std::move(points_);
+    r.extra_iterations += extra_iterations_;
+    if (r.continuation.size() > 1)
+      r.reason += "; continuation: " + std::to_string(r.continuation.size()) + " path points, " +
+                  std::to_string(r.total_iterations()) + " iterations in all";
+    return r;
+  }
+
+  static constexpr double kPathTolerance = 1e-10;  // relative to 1 + ||v|| + tau ||g||
 
   const Equation<G>& eq_;
-  const SolverOptions& opt_;
+  const G& group_;
+  Method method_;
   const TraceCallback& cb_;
   Solve solve_;
   const double h_;
-  std::vector<ContinuationStage> path_;
-  double result_h_ = 0.0;  // the h of the stage the answer comes from
-  double seconds_ = 0.0, cpu_seconds_ = 0.0;
+  const int q_;
+  const bool first_from_z_;
+  const bool dense_;  // the path's bordered systems are solved densely: only below the matrix-free size
+  bool cb_ok_ = true;
+  std::vector<PathPoint> points_;
+  int extra_iterations_ = 0;
 };
-
-template <LieGroup G, class Solve>
-SolveResult continued(const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb, Solve solve) {
-  return ContinuationSearch<G, Solve>(eq, opt, cb, std::move(solve)).run();
-}
 
 }  // namespace lienewton

@@ -270,10 +270,6 @@ class Equation {
   // that moved it (Frobenius).
   double z_adjustment() const { return z_adjustment_; }
 
-  // The identity of z's component (the group's answer): where continuation from the stiff end starts
-  // (continuation.hpp).
-  Element component_identity() const { return group_.component_identity(z_); }
-
   // Where the solvers start: y_0 = z, as section 5 does, unless start_at(y0) moved it (a request's y0, a
   // basin map's pixel). y0 must be reachable from z (in z SO(N) on O(N)); it is projected onto the group, as z is.
   const Element& start() const { return y0_; }

@@ -20,10 +20,12 @@ std::optional<double> convergence_rate(const std::vector<double>& r, int p) {
   return rate;
 }
 
-// The rate means an order of convergence only when the three residuals it is read from decrease and the
-// ratio of logs lies in [0.5, 3]: a last residual that rose (rate < 0) or fell by luck far below the
-// previous one at the rounding floor (rate >> 2) says nothing about the method.
-bool rate_is_reliable(const std::vector<double>& r, int p, double rate) {
+// The rate means an order of convergence only when the three residuals it is read from decrease, lie above their
+// rounding floors and the ratio of logs lies in [0.5, 3]: a last residual that rose (rate < 0), or that sits at
+// the floor, where its size is rounding's and not the method's, says nothing about the method.
+bool rate_is_reliable(const std::vector<double>& r, const std::vector<double>& floors, int p, double rate) {
+  for (int k = p - 3; k < p; ++k)
+    if (r[k] <= floors[k]) return false;
   return r[p - 3] > r[p - 2] && r[p - 2] > r[p - 1] && rate >= 0.5 && rate <= 3.0;
 }
 
@@ -40,6 +42,7 @@ IterationMonitor::IterationMonitor(const SolverOptions& options, const TraceCall
       cpu_start_(options.timed ? thread_cpu_seconds() : 0.0) {
   trace_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
   stops_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
+  floors_.reserve(static_cast<std::size_t>(options.max_iterations) + 1);
 }
 
 double IterationMonitor::solver_cpu_seconds() const {
@@ -59,6 +62,7 @@ std::optional<Status> IterationMonitor::record(TraceRecord rec, const Measuremen
   }
   const double step = rec.step;
   stops_.push_back(m.stop);
+  floors_.push_back(m.floor);
   trace_.push_back(std::move(rec));
   if (callback_) {
     const double before = options_.timed ? thread_cpu_seconds() : 0.0;
@@ -90,7 +94,7 @@ SolveResult IterationMonitor::finish(Status status) {
   res.iterations = iteration_;
   if (status == Status::converged) {
     res.rate = convergence_rate(stops_, iteration_);
-    res.rate_reliable = res.rate && rate_is_reliable(stops_, iteration_, *res.rate);
+    res.rate_reliable = res.rate && rate_is_reliable(stops_, floors_, iteration_, *res.rate);
   }
   res.seconds = elapsed();
   res.cpu_seconds = solver_cpu_seconds();
@@ -131,7 +135,12 @@ std::string reason_for(Status status, const SolveResult& r, const std::string& a
     case Status::no_descent:
       return "no step decreases 1/2 ||f||^2 although ||f(y)|| = " + format_number(r.residual) + at +
              " is far above its floor and no stationary point: phi is not smooth there";
+    case Status::fold:
+      return "z's branch of roots turns back before h: no root continued from z exists at h; ||f(y)|| = " +
+             format_number(r.residual);
     case Status::cancelled: return "cancelled by the caller";
+    case Status::min_step:   // an integration's statuses: integrate_on words their reasons
+    case Status::max_steps: break;
   }
   return "unknown";
 }

@@ -55,6 +55,7 @@ class IterationMonitor {
   double callback_cpu_seconds_ = 0;
   std::vector<TraceRecord> trace_;
   std::vector<double> stops_;
+  std::vector<double> floors_;  // each stop's rounding floor
   int iteration_ = 0;
   int stalled_ = 0;
   double best_ = std::numeric_limits<double>::infinity();

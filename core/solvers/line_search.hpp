@@ -12,6 +12,7 @@
 // Optimization, 2nd ed., sec. 3.1 and 3.5).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "charts.hpp"
 #include "core/cancellation.hpp"
@@ -21,7 +22,8 @@ namespace lienewton {
 
 inline constexpr double kArmijoC1 = 1e-4;
 inline constexpr int kMaxBacktracks = 40;    // alpha >= 10^-40 at most: far below any useful step
-inline constexpr int kMaxDampings = 12;      // mu up to 10^22 ||D^T f||: a steepest-descent step at rounding
+inline constexpr int kMaxDampings = 12;
+inline constexpr double kShortestStep = 1e-10;  // a shortened or damped step below this (relative) moves nothing      // mu up to 10^22 ||D^T f||: a steepest-descent step at rounding
 
 template <LieGroup G, class Chart>
 class LineSearch {
@@ -66,7 +68,11 @@ class LineSearch {
     const double phi0 = model.merit();
     const double norm = s.norm();
     double alpha = std::min(1.0, G::kLogRadius / norm);  // ||s|| <= the log radius: exp is injective there
-    for (int k = 0; k < kMaxBacktracks && alpha * norm > 0.0; ++k) {
+    // Only Newton's full step may be as short as rounding (near a root it is): pinned at log's cut, a shortened or
+    // damped step shrinks until phi "decreases" by rounding alone, and the iteration would creep on in steps of
+    // length ~1e-13 instead of saying that no step descends.
+    const double shortest = kShortestStep * (1.0 + model.point().v.norm());
+    for (int k = 0; k < kMaxBacktracks && ((k == 0 && kind == "newton") || alpha * norm > shortest); ++k) {
       if (cancellation_requested()) return Advance<Chart>::stop(Status::cancelled);
       const Trial<Chart> t = try_step(model.chart(), model.point(), Vector(alpha * s));
       if (t.merit <= phi0 + kArmijoC1 * alpha * slope) {

@@ -11,6 +11,20 @@
 
 namespace lienewton {
 
+// One point of continuation's path (solvers/continuation.hpp): a root (y = z exp(v), h) of
+// F(v, h) = v - h g(z exp v) = 0 (3.21) on z's branch, or the method's solve at the requested h.
+struct PathPoint {
+  PathPointKind kind = PathPointKind::path;
+  double h = 0;
+  double distance = 0;     // ||v||: how far y = z exp(v) is from z, in the algebra's coordinates
+  double angle = 0;        // largest rotation angle of v (the group's angle; log's branch ends at kLogRadius)
+  double dh_ds = 0;        // the h-component of the branch's unit tangent: it changes sign at a fold
+  double step_length = 0;  // the arclength s of the predictor step that reached this point
+  int iterations = 0;      // the corrector's Newton iterations (final: the method's)
+  double residual = 0;     // ||F(v, h)|| (final: ||f(y)|| of the method's returned y)
+  Status status = Status::converged;  // final: the method's status
+};
+
 // One record per iterate y_n, n = 0, 1, ... (y_0 = z).
 struct TraceRecord {
   int iteration = 0;
@@ -32,19 +46,8 @@ struct TraceRecord {
   std::optional<double> step_length;
   std::optional<double> trust_radius;
   std::optional<int> step_from_iterate;
-  std::optional<double> stage_h;   // continuation only: the h of the stage this iterate belongs to
-};
-
-// One stage of a continued solve (solvers/continuation.hpp): the equation at step size h, started where `start`
-// says, solved with `globalization`.
-struct ContinuationStage {
-  double h = 0;
-  Status status = Status::max_iterations;
-  int iterations = 0;
-  double residual = 0;  // ||f(y)|| at this stage's h of the stage's returned y
-  StageStart start = StageStart::given;
-  Globalization globalization = Globalization::none;
-  std::optional<int> restart;  // start == restart: which of the seeded starts (restart_start.hpp), from 0
+  std::optional<double> stage_h;   // continuation only: the h of the equation this iterate belongs to
+  std::optional<PathPoint> path_point;  // continuation only: a record that is a point of the path, not an iterate
 };
 
 struct SolveResult {
@@ -65,16 +68,23 @@ struct SolveResult {
   double seconds = 0;           // wall time
   double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded; 0 untimed)
   std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
-  // continuation only: every stage, the last at the requested h (whose solve is this result's status, trace, y)
-  std::vector<ContinuationStage> continuation;
-  // Newton iterations the answer cost: summed over the continuation's stages, else iterations.
-  int total_iterations() const {
-    if (continuation.empty()) return iterations;
-    int total = 0;
-    for (const ContinuationStage& s : continuation) total += s.iterations;
-    return total;
-  }
+  // Which root y is, and which search found it (core/options.hpp).
+  Branch branch = Branch::unchecked;
+  Search found_by = Search::plain;
+  double distance_from_z = 0;          // ||y - z||_F
+  std::optional<double> fold_h;        // continuation: the h at which z's branch turns back (status fold when < h)
+  std::optional<double> path_h;        // continuation: the largest h the path reached when it stopped short of h
+  std::optional<int> multistart_start; // found_by multistart: which seeded start, from 0
+  int multistart_tries = 0;            // seeded starts solved
+  // continuation only: the path's points, the method's solves at h included (the last is this result's)
+  std::vector<PathPoint> continuation;
+  int extra_iterations = 0;  // iterations of the searches besides the returned solve (path, multistart tries)
+  // Newton iterations the answer cost: the returned solve's and every other the search made.
+  int total_iterations() const { return iterations + extra_iterations; }
 };
+
+// A root to rounding: converged, or stagnated at its rounding floor.
+inline bool is_root(const SolveResult& r) { return r.status == Status::converged || r.status == Status::stagnated; }
 
 // Called once per trace record as it is computed; return false to cancel the solve (status cancelled).
 using TraceCallback = std::function<bool(const TraceRecord&)>;

@@ -4,6 +4,10 @@
 // end of the solve, classified against the y it returns:
 //   - stagnated returns the best iterate (smallest driven residual), every other ending the last recorded one;
 //   - max_iterations whose driven residual sits at the rounding floor is stagnated;
+//   - converged is stagnated too when tol lies below the rounding of the residual's own evaluation (the floor
+//     without its safety factor), the iterate before was already at the floor and the residual did not even halve
+//     from it: it dipped below tol by rounding, not by the method (the same y evaluated another way may well lie
+//     above tol);
 //   - any ending whose y solves (1.1) while h g(y) has an angle beyond pi is off_branch.
 // The result's residual, floor and reason describe that returned y.
 #include <cmath>
@@ -26,6 +30,9 @@ struct StepInfo {
   std::optional<double> radius;       // trust region: the radius the step was taken in
   std::optional<int> from_iterate;    // watchdog: the step starts at this earlier iterate, not the last one
 };
+
+// The rounding floor's safety factor over the rounding of one evaluation of the residual.
+inline constexpr double kFloorMargin = 64.0;
 
 template <LieGroup G>
 class SolverRun {
@@ -57,6 +64,7 @@ class SolverRun {
     rec.step_from_iterate = info.from_iterate;
     const Iterate it{p.y, monitor_.iteration(), p.residual, p.algebra_residual, driven, floor};
     if (!(best_.driven <= driven)) best_ = it;
+    if (recorded_) previous_ = last_;
     last_ = it;
     recorded_ = true;
     return monitor_.record(std::move(rec), {stop, driven, algebra ? "||f~(v)||" : "||f(y)||", floor});
@@ -75,6 +83,9 @@ class SolverRun {
   // Ends the solve with the iterate the status calls for (see the file comment).
   SolveResult finish(Status status, std::string detail = {}) {
     if (status == Status::max_iterations && last_.driven <= last_.floor) status = Status::stagnated;
+    const bool dipped = status == Status::converged && last_.n > 0 && last_.floor / kFloorMargin > options_.tol &&
+                        previous_.driven <= previous_.floor && last_.driven > 0.5 * previous_.driven;
+    if (dipped) status = Status::stagnated;
     const Iterate& it = status == Status::stagnated ? best_ : last_;
     if (status != Status::cancelled && eq_.is_implicit_euler() &&
         eq_.check_implicit_euler(it.y, eq_.conditioning(it.y)).off_branch())
@@ -90,6 +101,11 @@ class SolverRun {
     res.reorthogonalisations = projections_;
     res.linear_solver = krylov_ ? "gmres" : "lu";
     res.reason = reason_for(status, res, G::kAngleName, G::kLogBoundaryName);
+    if (dipped)
+      res.reason = "stagnated at the rounding floor " + format_number(res.floor) + ": ||f(y)|| = " +
+                   format_number(res.residual) + " at y_" + std::to_string(res.iterate) + " fell below tol only by "
+                   "rounding, less than halved from y_" + std::to_string(previous_.n) + " already at the floor (tol "
+                   "is below what double precision resolves here)";
     if (status == Status::diverged && !monitor_.divergence().empty()) detail = monitor_.divergence();
     if (!detail.empty()) res.reason += " (" + detail + ")";
     return res;
@@ -118,13 +134,13 @@ class SolverRun {
     double floor = 0;
   };
 
-  // 64 eps sqrt(q) (1 + ||f|| + ||v|| + h ||g|| + kappa): the rounding of the terms of f, plus kappa ~ h ||dg||
-  // for the rounding of y amplified by df (3.8).
+  // kFloorMargin eps sqrt(q) (1 + ||f|| + ||v|| + h ||g|| + kappa): the rounding of the terms of f, plus
+  // kappa ~ h ||dg|| for the rounding of y amplified by df (3.8), with a safety factor.
   double floor_of(const Point& p, double driven) const {
     double s = 1.0 + driven + *kappa_;
     if (p.v.size() > 0) s += p.v.norm();
     if (p.hg.size() > 0) s += p.hg.norm();
-    return 64.0 * std::numeric_limits<double>::epsilon() * std::sqrt(double(eq_.group().dim())) * s;
+    return kFloorMargin * std::numeric_limits<double>::epsilon() * std::sqrt(double(eq_.group().dim())) * s;
   }
 
   const Equation<G>& eq_;
@@ -132,7 +148,7 @@ class SolverRun {
   bool krylov_;
   IterationMonitor monitor_;
   std::optional<double> kappa_;
-  Iterate last_, best_;
+  Iterate last_, best_, previous_;  // previous_: the iterate recorded before last_
   bool recorded_ = false;
   int projections_ = 0;
 };

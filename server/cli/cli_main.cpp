@@ -1,5 +1,6 @@
 // lienewton: the command-line front end. Same JSON documents as the HTTP API, no server caps on N.
 #include <malloc.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/basins.hpp"
+#include "core/fields.hpp"
 #include "core/integrate.hpp"
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
@@ -30,22 +32,30 @@ using namespace lienewton;
 using namespace lienewton::service;
 
 constexpr const char* kUsage =
-    "usage: lienewton COMMAND < request.json\n"
+    "usage: lienewton COMMAND [--FIELD VALUE ...] [--pretty] [< request.json]\n"
     "\n"
     "Commands (request JSON on stdin, result on stdout; the documents of the HTTP API, see /openapi.json):\n"
     "  solve            one solve of y = z exp(h g(y)) -> result JSON\n"
     "  sweep            stability map over (method, n, h) -> {\"cells\": [...], \"seconds\"}\n"
     "  basins           basin map: each method from every start y0 = z exp(a B1 + b B2) -> {\"grid\",\"rows\",\"roots\",...}\n"
-    "  integrate        time stepping with an implicit Lie group integrator -> result JSON\n"
+    "  integrate        time stepping with a Lie group integrator (implicit; rkmk4 explicit) -> result JSON\n"
     "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
     "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
     "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
+    "  render residuals solve request (methods, differentials lists) -> PNG of ||f(y_n)|| against CPU time\n"
+    "  render work-precision  work-precision request -> PNG of CPU time against global error\n"
+    "  render invariants integrate request (rigid-body, heavy-top) -> PNG of its invariants' drift over time\n"
     "  merge FILE...    join the outputs of a sweep or basin map run in shards (\"shard\": {\"index\": i, \"count\": k},\n"
     "                   one FILE each, any order) into the unsharded output (\"seconds\": summed over the parts)\n"
     "  render basins    basin request (plus width/height) -> PNG basin map on stdout\n"
     "  figures [DIFF]   the paper's Figures 5.1 and 5.2 as Markdown tables (no stdin): the default sweep of\n"
     "                   paper-linear and paper-sine, differential DIFF (default finite-difference, as the paper)\n"
     "  --help           this text\n"
+    "\n"
+    "Any request field may be given as a flag instead of (or over) the JSON on stdin, typed by the request\n"
+    "contract (/openapi.json): `lienewton solve --n 8 --h 2 --method newton-group --pretty`; a list as 2,3,4;\n"
+    "an object or matrix as JSON; - or _ in the name alike. Stdin is not read when it is a terminal.\n"
+    "--pretty indents the JSON result.\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
     "Built with -DLIENEWTON_MPI=ON, `mpirun -n P lienewton sweep|basins|figures` (or srun) spreads the cells or\n"
@@ -73,10 +83,85 @@ void write_png(const std::vector<unsigned char>& png) {
   std::fflush(stdout);
 }
 
-int run(const std::string& command, const std::string& sub, const Part& part) {
+// The command's route in the field table, and a render command's picture options (picture_fields()).
+fields::Route route_of(const std::string& command, const std::string& sub) {
+  if (command == "solve") return fields::solve;
+  if (command == "sweep") return fields::sweep;
+  if (command == "basins") return fields::basins;
+  if (command == "integrate") return fields::integrate;
+  if (command == "work-precision") return fields::work_precision;
+  if (sub == "heatmap") return fields::sweep;
+  if (sub == "basins") return fields::basins;
+  if (sub == "work-precision") return fields::work_precision;
+  if (sub == "invariants") return fields::integrate;
+  return fields::solve;  // frames of a solve, residuals
+}
+
+fields::Route picture_route_of(const std::string& sub) {
+  if (sub == "frames") return fields::render_frames;
+  if (sub == "heatmap") return fields::render_heatmap;
+  if (sub == "basins") return fields::render_basins;
+  if (sub == "work-precision") return fields::render_work_precision;
+  if (sub == "invariants") return fields::render_invariants;
+  return fields::render_residuals;
+}
+
+// A flag's text as the JSON value its field's row calls for: numbers, integers and true/false as JSON, a string as
+// it is, a list comma-separated (or JSON), an object or matrix as JSON. Text that is none of these is sent as a
+// string: the codec then names the field and says what it expects.
+json flag_value(const fields::Field& f, const std::string& text) {
+  const auto one = [&](const std::string& t) -> json {
+    if (f.type == fields::Type::string) return t;
+    const json v = json::parse(t, nullptr, false);
+    return v.is_discarded() ? json(t) : v;
+  };
+  if (!f.array || (!text.empty() && text.front() == '[')) return one(text);
+  json list = json::array();
+  std::size_t from = 0;
+  for (std::size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1)
+    list.push_back(one(text.substr(from, comma - from)));
+  list.push_back(one(text.substr(from)));
+  return list;
+}
+
+struct Flags {
+  json fields = json::object();
+  bool pretty = false;
+};
+
+// --name value pairs (and --pretty) after the command, each name a field the command's route takes.
+Flags read_flags(const std::vector<std::string>& args, const std::string& command, const std::string& sub) {
+  Flags out;
+  const bool render = command == "render";
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--pretty") {
+      out.pretty = true;
+      continue;
+    }
+    if (args[i].rfind("--", 0) != 0 || args[i].size() < 3)
+      throw ApiError(400, "usage", "", "expected --FIELD VALUE or --pretty, got " + args[i] + "; see lienewton --help");
+    std::string name = args[i].substr(2);
+    for (char& c : name) c = c == '-' ? '_' : c;
+    const fields::Field* f = fields::find(route_of(command, sub), name);
+    if (!f && render) {
+      for (const fields::Field& p : picture_fields())
+        if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
+    }
+    if (!f) throw ApiError(400, "usage", name, "lienewton " + command + (render ? " " + sub : "") + " takes no field " + name);
+    if (i + 1 >= args.size()) throw ApiError(400, "usage", name, "--" + args[i].substr(2) + " needs a value");
+    out.fields[name] = flag_value(*f, args[++i]);
+  }
+  return out;
+}
+
+int run(const std::string& command, const std::string& sub, const Flags& flags, const Part& part) {
   std::string text;
-  if (part.prints) text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-  const json body = parse_body(part.share_input(std::move(text)));
+  // With flags the request may come from them alone: a terminal on stdin is not waited on.
+  const bool read_stdin = part.prints && !(flags.fields.size() > 0 && isatty(STDIN_FILENO));
+  if (read_stdin) text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos && !flags.fields.empty()) text = "{}";
+  json body = parse_body(part.share_input(std::move(text)));
+  if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
   json out;
   if (command == "solve") {
@@ -93,11 +178,16 @@ int run(const std::string& command, const std::string& sub, const Part& part) {
     out = to_json(work_precision(work_precision_request_from_json(body, limits)));
   } else {
     render::Renderer renderer(1);
-    const RenderRequestFn draw = sub == "frames" ? render_frames : sub == "basins" ? render_basins : render_heatmap;
+    const RenderRequestFn draw = sub == "frames"           ? render_frames
+                                 : sub == "basins"         ? render_basins
+                                 : sub == "residuals"      ? render_residuals
+                                 : sub == "work-precision" ? render_work_precision
+                                 : sub == "invariants"     ? render_invariants
+                                                           : render_heatmap;
     write_png(draw(body, limits, renderer, {}));
     return 0;
   }
-  if (part.prints) std::cout << dump(out) << "\n";
+  if (part.prints) std::cout << (flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) << "\n";
   return 0;
 }
 
@@ -173,18 +263,24 @@ int main(int argc, char** argv) {
   if (command == "figures" && argc <= 3) return figures(sub, part);
   const bool plain = command == "solve" || command == "sweep" || command == "basins" || command == "integrate" ||
                      command == "work-precision";
-  const bool render = command == "render" && (sub == "frames" || sub == "heatmap" || sub == "basins");
+  const bool render = command == "render" && (sub == "frames" || sub == "heatmap" || sub == "basins" ||
+                                              sub == "residuals" || sub == "work-precision" ||
+                                              sub == "invariants");
   const bool merging = command == "merge" && argc > 2;
-  if ((!plain && !render && !merging) || (!merging && argc > (render ? 3 : 2))) {
+  if (!plain && !render && !merging) {
     if (part.prints) std::cerr << kUsage;
-    return fail(2, "usage", "", "unknown command; see lienewton --help", part.prints);
+    return fail(2, "usage", "", "unknown command " + command + (command == "render" ? " " + sub : "") +
+                                    "; see lienewton --help", part.prints);
   }
   // Every rank of an MPI job meets the same request errors; rank 0 reports them.
   const bool prints = part.prints;
   try {
-    return merging ? merge(std::vector<std::string>(argv + 2, argv + argc)) : run(command, sub, part);
+    if (merging) return merge(std::vector<std::string>(argv + 2, argv + argc));
+    const Flags flags = read_flags(std::vector<std::string>(argv + (render ? 3 : 2), argv + argc), command, sub);
+    return run(command, sub, flags, part);
   } catch (const RequestError& e) {
-    return fail(2, error_code(e), e.field(), e.what(), prints);
+    if (prints) std::cerr << dump(error_body(e)) << "\n";  // with a program's line and column
+    return 2;
   } catch (const ApiError& e) {
     return fail(e.status() < 500 ? 2 : 1, e.code(), e.field(), e.what(), prints);
   } catch (const render::RenderUnavailable& e) {

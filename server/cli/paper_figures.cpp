@@ -52,7 +52,10 @@ char status_code(Status status) {
     case Status::off_branch: return 'B';
     case Status::local_minimum: return 'P';
     case Status::no_descent: return 'N';
+    case Status::fold: return 'T';
     case Status::cancelled: return '-';
+    case Status::min_step: return 'H';
+    case Status::max_steps: return 'K';
   }
   return '?';
 }

@@ -1,7 +1,8 @@
 // Starts the real lienewton server on a free loopback port and a headless Debian Chromium driven by
 // playwright-core (no browser download). Everything started here is stopped by stopAll(), also on failure.
 import { spawn } from 'node:child_process';
-import { existsSync } from 'node:fs';
+import { existsSync, mkdirSync } from 'node:fs';
+import { resolve } from 'node:path';
 import net from 'node:net';
 
 const started = [];
@@ -27,10 +28,11 @@ function freePort() {
   });
 }
 
-export async function startServer(binary, webRoot, { timeoutMs = 20000 } = {}) {
+// flags: more of the server's flags (its limits), e.g. ['--sweep-timeout', '2'].
+export async function startServer(binary, webRoot, { timeoutMs = 20000, flags = [] } = {}) {
   if (!existsSync(binary)) throw new Error(`server binary not found: ${binary}`);
   const port = await freePort();
-  const child = spawn(binary, ['--host', '127.0.0.1', '--port', String(port), '--web-root', webRoot],
+  const child = spawn(binary, ['--host', '127.0.0.1', '--port', String(port), '--web-root', webRoot, ...flags],
     { stdio: ['ignore', 'pipe', 'pipe'] });
   started.push(() => child.exitCode === null && child.kill('SIGKILL'));
   process.on('exit', () => child.exitCode === null && child.kill('SIGKILL'));
@@ -72,4 +74,16 @@ export function watchdog(ms) {
     process.exit(1);
   }, ms).unref();
   for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, async () => { await stopAll(); process.exit(1); });
+}
+
+// The test's arguments (server binary, web root, screenshot directory), resolved, with the screenshot directory
+// made; a missing one ends the process with the test's usage.
+export function testArguments(script) {
+  const [binary, webRoot, shots] = process.argv.slice(2).map((a) => a && resolve(a));
+  if (!binary || !webRoot || !shots) {
+    console.error(`usage: node ${script} <server-binary> <web-root> <screenshot-dir>`);
+    process.exit(2);
+  }
+  mkdirSync(shots, { recursive: true });
+  return { binary, webRoot, shots };
 }

@@ -131,9 +131,10 @@ TEST(HonestNumbers, OrthogonalityAndDivergenceReason) {
           const SolveResult r = solve(paper_request(p, 7, h, m, d));
           for (const auto& t : r.trace) EXPECT_LT(t.orthogonality_error, 1e-13);
           if (r.status == Status::diverged) { EXPECT_NE(r.reason.find(" = "), std::string::npos) << r.reason; }
-          if (r.rate_reliable) {
+          if (r.rate_reliable) {  // the rate is read from three residuals above their rounding floor
             ASSERT_TRUE(r.rate.has_value());
             EXPECT_GE(*r.rate, 0.5);
+            for (int k = r.iterations - 3; k < r.iterations; ++k) EXPECT_GT(r.trace[k].residual, r.floor / 1e3);
           }
         }
 }
@@ -195,6 +196,24 @@ TEST(HonestNumbers, RandomLargeHAgreeWithTheOracle) {
   }
   std::printf("oracle agreement: %d/%d\n", agree, kCases);
   EXPECT_EQ(agree, kCases);
+}
+
+// The three reproductions of the honest-numbers audit: a line search pinned at log's cut says no_descent (not
+// max_iterations after steps of length ~1e-13); a rate read from residuals at the floor is not reliable.
+TEST(HonestNumbers, PinnedLineSearchSaysNoDescent) {
+  SolveRequest req = paper_request(ProblemKind::rigid_body, 3, 8, Method::newton_group, Differential::dexpinv_0);
+  req.solver.globalization = Globalization::line_search;
+  const SolveResult r = solve(req);
+  EXPECT_EQ(r.status, Status::no_descent) << r.reason;
+  for (std::size_t n = 1; n < r.trace.size(); ++n) EXPECT_GT(r.trace[n].step, 1e-12) << "iterate " << n;
+}
+
+TEST(HonestNumbers, RateAtTheFloorIsNotReliable) {
+  // Its last residuals are ..., 1e-8, 1.1e-13, 8e-14 with a floor of 4e-11 and tol 1e-13: the rate is rounding's,
+  // whatever its value, and so is the last dip below tol (stagnated).
+  const SolveResult r = solve(paper_request(ProblemKind::paper_linear, 4, 1024, Method::newton_algebra, Differential::exact));
+  ASSERT_TRUE(r.status == Status::converged || r.status == Status::stagnated) << r.reason;
+  EXPECT_FALSE(r.rate_reliable);
 }
 
 }  // namespace

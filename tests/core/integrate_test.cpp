@@ -5,7 +5,10 @@
 
 #include "core/integrate.hpp"
 #include "core/order_fit.hpp"
+#include "core/problems.hpp"
+#include "core/rkmk_tableau.hpp"
 #include "core/work_precision.hpp"
+#include "matrix_ode_reference.hpp"
 
 namespace lienewton {
 namespace {
@@ -42,6 +45,8 @@ TEST(Integrators, DirkCrouchGrossmanHasOrderTwo) {
 TEST(Integrators, RigidBodyStaysOnSO3Over10kSteps) {
   for (Integrator integrator : kAllIntegrators) {
     for (Method method : {Method::newton_group, Method::newton_algebra}) {
+      // An RKMK stage system is one iteration for either Newton method, and rkmk4 solves nothing: one run each.
+      if (method == Method::newton_algebra && (rkmk_tableau(integrator) || integrator == Integrator::rkmk4)) continue;
       IntegrateRequest req;
       req.h = 1e-3;
       req.t_end = 10.0;
@@ -60,9 +65,9 @@ TEST(Integrators, RigidBodyStaysOnSO3Over10kSteps) {
   req.t_end = 10.0;
   req.reference = false;
   req.integrator = Integrator::dirk_cg2;
-  EXPECT_LT(*integrate(req).energy_drift, 1e-10);
+  EXPECT_LT(*integrate(req).invariant_drifts[Invariant::energy], 1e-10);
   req.integrator = Integrator::implicit_euler;
-  EXPECT_GT(*integrate(req).energy_drift, 1e-4);
+  EXPECT_GT(*integrate(req).invariant_drifts[Invariant::energy], 1e-4);
 }
 
 TEST(Integrators, FramesAndStepRecords) {
@@ -114,10 +119,45 @@ TEST(WorkPrecision, SeriesCarryTheirFittedOrder) {
   EXPECT_NEAR(r.series[0].fitted_order.value(), 1.0, 0.1);
   EXPECT_NEAR(r.series[1].fitted_order.value(), 2.0, 0.1);
   EXPECT_NEAR(r.series[2].fitted_order.value(), 2.0, 0.1);
-  // The same number as fitting the points by hand.
+  // The same number as fitting the points in the fit by hand: at least the two smallest h, each left out with
+  // its reason.
   std::vector<double> h, error;
-  for (const auto& p : r.series[0].points) h.push_back(p.h), error.push_back(p.error);
+  for (const auto& p : r.series[0].points) {
+    EXPECT_EQ(p.in_fit, p.excluded.empty()) << p.h;
+    if (p.in_fit) h.push_back(p.h), error.push_back(p.error);
+  }
+  EXPECT_GE(h.size(), 2u);
   EXPECT_EQ(r.series[0].fitted_order, fitted_order(h, error));
+}
+
+// Why: on paper-sine N = 5 a stage from the paper's start lands on a distant root of (1.1) at h = 1/4 and the
+// orders fitted over every point were artefacts (2.37 and 3.42). Every stage now keeps the root continued from its
+// start, the orders are fitted over the asymptotic range only, and each run's global error is the distance to an
+// independent reference (RK4 on the matrix ODE, nothing shared with the project's RKMK4 reference) within 1 %.
+TEST(WorkPrecision, PaperSineOrdersAreHonest) {
+  WorkPrecisionRequest req;
+  req.problem.kind = ProblemKind::paper_sine;
+  req.problem.n = 5;
+  req.choices = {{Integrator::implicit_euler, Method::newton_group, Differential::exact},
+                 {Integrator::dirk_cg2, Method::newton_group, Differential::exact}};
+  const WorkPrecisionResult r = work_precision(req);
+  ASSERT_EQ(r.series.size(), 2u);
+  EXPECT_NEAR(r.series[0].fitted_order.value(), 1.0, 0.2);
+  EXPECT_NEAR(r.series[1].fitted_order.value(), 2.0, 0.2);
+  const Eigen::MatrixXd y_ref =
+      test::matrix_ode_reference([](const Eigen::MatrixXd& y) { return PaperSine{}.g(y); }, req.problem.start(), 1.0);
+  for (std::size_t c = 0; c < r.series.size(); ++c) {
+    int in_fit = 0;
+    for (const WorkPrecisionPoint& p : r.series[c].points) {
+      EXPECT_EQ(p.status, Status::converged) << p.h;
+      in_fit += p.in_fit;
+      IntegrateRequest run{.problem = req.problem, .h = p.h, .t_end = 1.0, .integrator = req.choices[c].integrator,
+                           .reference = false};
+      const double independent = (integrate(run).y - y_ref).norm();
+      EXPECT_NEAR(p.error, independent, 0.01 * independent) << to_string(req.choices[c].integrator) << " h = " << p.h;
+    }
+    EXPECT_GE(in_fit, 3) << to_string(req.choices[c].integrator);
+  }
 }
 
 }  // namespace

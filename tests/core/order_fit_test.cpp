@@ -41,5 +41,23 @@ TEST(OrderFit, NothingWithoutTwoDistinctSteps) {
   EXPECT_FALSE(fitted_order({0.5, 0.25}, {0.0, 0.1}));
 }
 
+// The asymptotic range: error = h^2 for the small h, a pre-asymptotic regime above (a distant root's error, or a
+// wrong one): the range is the small-h points whose local slopes agree, and the order is theirs.
+TEST(OrderFit, AsymptoticRangeIsTheSmallStepsThatAgree) {
+  const std::vector<double> h = {0.25, 0.125, 0.0625, 0.03125, 0.015625, 0.0078125};
+  std::vector<double> error;
+  for (double x : h) error.push_back(x * x);
+  error[0] = 2.0;  // h = 1/4: pre-asymptotic
+  error[1] = 0.5;
+  const AsymptoticRange r = asymptotic_range(h, error);
+  EXPECT_EQ(r.indices, (std::vector<std::size_t>{5, 4, 3, 2}));
+  EXPECT_NEAR(r.order.value(), 2.0, 1e-12);
+  EXPECT_FALSE(r.contains(0));
+  EXPECT_TRUE(r.contains(2));
+  // Fewer than three points: all of them; none: no order.
+  EXPECT_EQ(asymptotic_range({0.5, 0.25}, {1.0, 0.1}).indices.size(), 2u);
+  EXPECT_FALSE(asymptotic_range({}, {}).order);
+}
+
 }  // namespace
 }  // namespace lienewton

@@ -74,7 +74,6 @@ struct AdditiveGroup {
   }
   std::string not_an_element(const Eigen::MatrixXd&, const std::string&) const { return {}; }
   std::string not_reachable(const Eigen::MatrixXd&, const Eigen::MatrixXd&) const { return {}; }
-  Element component_identity(const Element&) const { return identity(); }
 
  private:
   int n_, cols_;

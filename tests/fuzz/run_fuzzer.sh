@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the request-parsing fuzzer with clang (libFuzzer + ASan + UBSan) in build-fuzz/ and runs it for a
-# bounded number of inputs over the committed seed corpus. CI: tests/fuzz/run_fuzzer.sh [runs]
+# Builds the request-parsing and user-program fuzzers with clang (libFuzzer + ASan + UBSan) in build-fuzz/ and
+# runs each for a bounded number of inputs over the committed seed corpus. CI: tests/fuzz/run_fuzzer.sh [runs]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 runs="${1:-50000}"
@@ -10,7 +10,11 @@ build="${LIENEWTON_FUZZ_BUILD:-$root/build-fuzz}"
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DLIENEWTON_FUZZ=ON \
   -DLIENEWTON_NATIVE=OFF -DLIENEWTON_BENCH=OFF -DLIENEWTON_TESTS=ON >/dev/null
-cmake --build "$build" -j"$(nproc)" --target lienewton_fuzz_request
+cmake --build "$build" -j"$(nproc)" --target lienewton_fuzz_request lienewton_fuzz_program
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-"$build/tests/fuzz/../../bin/lienewton_fuzz_request" -runs="$runs" -max_len=4096 -timeout=10 "$scratch" "$root/tests/fuzz/corpus"
+mkdir "$scratch/request" "$scratch/program"
+"$build/tests/fuzz/../../bin/lienewton_fuzz_request" -runs="$runs" -max_len=4096 -timeout=10 "$scratch/request" "$root/tests/fuzz/corpus"
+# The program language: its inputs are cheap, so a fifth of the runs covers it.
+"$build/tests/fuzz/../../bin/lienewton_fuzz_program" -runs="$(( runs / 5 ))" -max_len=2048 -timeout=10 "$scratch/program" \
+  "$root/tests/fuzz/program_corpus"

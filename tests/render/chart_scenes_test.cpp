@@ -1,6 +1,7 @@
 // The work-precision and residual figures, drawn through the renderer and read back pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -29,7 +30,7 @@ WorkPrecisionResult synthetic_work_precision(std::size_t count) {
       const double h = std::ldexp(1.0, -k);
       s.points.push_back({.h = h, .cpu_seconds = 1e-5 * std::ldexp(1.0, k) * (1 + 0.1 * i),
                           .error = std::pow(10.0, -0.3 * i) * std::pow(h, p), .status = Status::converged,
-                          .iterations = 10});
+                          .iterations = 10, .substeps = 16, .drifts = {}, .in_fit = true, .excluded = {}});
     }
     s.fitted_order = p;
     r.series.push_back(s);
@@ -110,6 +111,28 @@ TEST(WorkPrecisionScene, LegendNamesEverySeriesWithItsFittedOrder) {
   }
 }
 
+// Against tolerance (DiffEqDevTools' chart): markers labelled with each run's tolerance, along decreasing
+// tolerance whatever the points' order, and no fitted order in the legend.
+TEST(WorkPrecisionScene, AgainstToleranceMarkersAreLabelledWithTheTolerance) {
+  WorkPrecisionResult result = synthetic_work_precision(2);
+  for (auto& s : result.series) {
+    s.fitted_order.reset();
+    for (std::size_t k = 0; k < s.points.size(); ++k) {
+      s.points[k].tolerance = std::pow(10.0, -4.0 - 2.0 * static_cast<double>(k));
+      s.points[k].in_fit = false;
+    }
+  }
+  std::reverse(result.series[1].points.begin(), result.series[1].points.end());
+  const Figure figure = work_precision_scene(result, "work-precision", 960, 640);
+  const LineChart& chart = figure.panels[0].chart;
+  const std::vector<std::string> labels{"1e-4", "1e-6", "1e-8", "1e-10", "1e-12"};
+  EXPECT_EQ(chart.series[0].point_labels, labels);
+  EXPECT_EQ(chart.series[1].point_labels, labels);
+  EXPECT_EQ(chart.series[0].label, "Euler, Fixed point");
+  EXPECT_NE(chart.legend_title.find("tolerance"), std::string::npos);
+  EXPECT_GT(draw(figure).width, 0);
+}
+
 TEST(WorkPrecisionScene, RefusesWhatItCannotDraw) {
   WorkPrecisionResult failed = synthetic_work_precision(2);
   for (auto& s : failed.series) {
@@ -151,7 +174,7 @@ TEST(ResidualsScene, TimePanelBesideIterationPanelEachWithEverySeries) {
     EXPECT_EQ(image.at(static_cast<int>(p.x), static_cast<int>(p.y)), s.style.color);
   }
   const LineChart& by_iteration = figure.panels[1].chart;
-  EXPECT_EQ(by_iteration.series[0].label, "Newton group, FD: 5 it, 12 us");
+  EXPECT_EQ(by_iteration.series[0].label, "Newton group, FD: 5 it, 12 \u00b5s");
   EXPECT_EQ(by_iteration.x.scale, AxisScale::linear);
 }
 

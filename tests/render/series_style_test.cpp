@@ -89,7 +89,7 @@ TEST(TickLabel, ShortNumbersAndTimeUnits) {
   EXPECT_EQ(tick_label(2e6, AxisUnit::plain), "2e6");
   EXPECT_EQ(tick_label(0.01, AxisUnit::plain), "0.01");
   EXPECT_EQ(tick_label(100, AxisUnit::plain), "100");
-  EXPECT_EQ(tick_label(1e-5, AxisUnit::seconds), "10 us");
+  EXPECT_EQ(tick_label(1e-5, AxisUnit::seconds), "10 \u00b5s");
   EXPECT_EQ(tick_label(1.5e-3, AxisUnit::seconds), "1.5 ms");
   EXPECT_EQ(tick_label(2, AxisUnit::seconds), "2 s");
   EXPECT_EQ(tick_label(3e-9, AxisUnit::seconds), "3 ns");

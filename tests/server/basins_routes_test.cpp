@@ -194,9 +194,13 @@ TEST_F(BasinRoutes, PngHasOnePanelPerMethodInRootAndFailureColours) {
   const BasinResult result = basins(basin_request_from_json(json::parse(body), Limits{}));
   const render::BasinLayout layout = render::layout_basins(result, 0, 0);
   ASSERT_EQ(image.width, layout.width);
+  // The caption (title: problem, group, h; subtitle: the starts, differential, tol) is a band above the layout.
+  const int band = image.height - layout.height;
+  EXPECT_GT(band, 0);
+  EXPECT_GT(image.count_not(image.at(0, 0), 0, 0, image.width / 2, band), 200);
   const int middle = layout.left + layout.panel_size + layout.gap / 2;
   const render::Color background = image.at(0, 0);
-  for (int y = layout.top; y < layout.top + layout.panel_size + 30; ++y) {
+  for (int y = band + layout.top; y < band + layout.top + layout.panel_size + 30; ++y) {
     EXPECT_EQ(image.at(middle, y), background) << "tick labels meet in the gap at y = " << y;
   }
   // The GET form for <img src>.

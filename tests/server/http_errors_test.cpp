@@ -85,6 +85,28 @@ TEST(HttpErrors, BodyRulesBeforeTheBodyIsRead) {
   answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{\"n\":\r\n0\r\n\r\n");
   EXPECT_EQ(raw_status(answer), 411) << answer;
   EXPECT_NE(answer.find("Connection: close"), std::string::npos);
+  // A body on GET or HEAD that carries a request of its own: one answer, the inner request never runs.
+  for (const char* method : {"GET", "HEAD"}) {
+    const std::string inner = "GET /metrics HTTP/1.1\r\nHost: x\r\n\r\n";
+    answer = raw_http(s.port, std::string(method) + " /livez HTTP/1.1\r\nHost: x\r\nContent-Length: " +
+                                  std::to_string(inner.size()) + "\r\n\r\n" + inner);
+    EXPECT_EQ(raw_status(answer), 400) << answer;
+    EXPECT_EQ(answer.find("HTTP/1.1 ", 1), std::string::npos) << answer;
+  }
+  // A bare CR or NUL in a header value, and "Connection: CLOSE" in any case.
+  answer = raw_http(s.port, std::string("GET /livez HTTP/1.1\r\nHost: x\r\nX-A: a\rb\r\n\r\n"));
+  EXPECT_EQ(raw_status(answer), 400) << answer;
+  answer = raw_http(s.port, std::string("GET /livez HTTP/1.1\r\nHost: x\r\nX-A: a\0b\r\n\r\n", 42));
+  EXPECT_EQ(raw_status(answer), 400) << answer;
+  // An encoded newline is refused where it would be a header's own (httplib decodes it), but not in Referer: the
+  // dashboard's address keeps a program g, newlines and all, in its query.
+  answer = raw_http(s.port, "GET /livez HTTP/1.1\r\nHost: x\r\nX-A: a%0d%0aX-B: c\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 400) << answer;
+  answer = raw_http(s.port, "GET /livez HTTP/1.1\r\nHost: x\r\nReferer: http://x/?g=a%3D1%3B%0Ag%3Da\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 200) << answer;
+  answer = raw_http(s.port, "GET /livez HTTP/1.1\r\nHost: x\r\nConnection: CLOSE\r\n\r\n");
+  EXPECT_EQ(raw_status(answer), 200) << answer;
+  EXPECT_NE(answer.find("Connection: close"), std::string::npos) << answer;
   // Compressed body.
   answer = raw_http(s.port, "POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\nContent-Length: 4\r\n\r\nabcd");
   EXPECT_EQ(raw_status(answer), 415) << answer;
@@ -98,42 +120,97 @@ TEST(HttpErrors, BodyRulesBeforeTheBodyIsRead) {
   EXPECT_EQ(error_of_raw(answer)["code"], "bad_request");
 }
 
-TEST(HttpErrors, OverCapacityKeepsLivezAnswering) {
+// The clients here are named by X-Real-IP from a trusted front (the test's loopback peer).
+httplib::Result solve_as(const TestServer& s, const std::string& client) {
+  auto c = s.client();
+  return c.Post("/api/v1/solve", {{"X-Real-IP", client}}, R"({"n":3,"h":0.5})", "application/json");
+}
+
+// A progress hook that holds every solve inside its work slot until release().
+struct HeldWork {
   std::mutex m;
   std::condition_variable cv;
-  bool release = false;
-  std::atomic<int> blocked{0};
-  ServerOptions o;
-  o.threads = 4;  // two work slots
-  o.on_progress = [&](int) {
-    ++blocked;
-    std::unique_lock lock(m);
-    cv.wait(lock, [&] { return release; });
-  };
-  TestServer s(o);
-  std::vector<std::thread> holders;
-  for (int k = 0; k < 2; ++k) {
-    holders.emplace_back([&] {
-      auto c = s.client();
-      c.Post("/api/v1/solve", R"({"n":3,"h":0.5})", "application/json");
-    });
+  bool released = false;
+  std::atomic<int> held{0};
+
+  std::function<void(int)> hook() {
+    return [this](int) {
+      ++held;
+      std::unique_lock lock(m);
+      cv.wait(lock, [this] { return released; });
+    };
   }
-  while (blocked.load() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  auto c = s.client();
-  auto r = c.Post("/api/v1/solve", R"({"n":3,"h":0.5})", "application/json");
+  void wait_for(int count) const {
+    while (held.load() < count) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  void release() {
+    {
+      std::lock_guard lock(m);
+      released = true;
+    }
+    cv.notify_all();
+  }
+  // threads - 2 work slots, half of them per client address; trusted: the loopback peer is a front.
+  ServerOptions options(int threads, bool trusted) {
+    ServerOptions o;
+    o.threads = threads;
+    if (trusted) o.trusted_fronts = {"127.0.0.1"};
+    o.on_progress = hook();
+    return o;
+  }
+};
+
+TEST(HttpErrors, OverCapacityKeepsLivezAnswering) {
+  HeldWork work;
+  TestServer s(work.options(6, true));  // four work slots, two per client address
+  std::vector<std::thread> holders;
+  for (const char* client : {"10.0.0.1", "10.0.0.1", "10.0.0.2", "10.0.0.2"}) {
+    holders.emplace_back([&s, client] { solve_as(s, client); });
+  }
+  work.wait_for(4);
+  auto r = solve_as(s, "10.0.0.3");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 503);
   EXPECT_EQ(error_of(r)["code"], "over_capacity");
   EXPECT_EQ(r->get_header_value("Retry-After"), "1");
+  auto c = s.client();
   auto live = c.Get("/livez");
   ASSERT_TRUE(live);
   EXPECT_EQ(live->status, 200);
-  {
-    std::lock_guard lock(m);
-    release = true;
-  }
-  cv.notify_all();
+  work.release();
   for (auto& t : holders) t.join();
+}
+
+TEST(HttpErrors, OneClientAddressTakesAtMostHalfTheWorkSlots) {
+  HeldWork work;
+  TestServer s(work.options(6, true));  // four work slots, two per client address
+  std::vector<std::thread> holders;
+  for (int k = 0; k < 2; ++k) holders.emplace_back([&s] { solve_as(s, "10.0.0.1"); });
+  work.wait_for(2);
+  auto same = solve_as(s, "10.0.0.1");
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->status, 429);
+  EXPECT_EQ(error_of(same)["code"], "client_over_capacity");
+  work.release();
+  for (auto& t : holders) t.join();
+  // Another address still gets a slot (the hook no longer holds).
+  auto other = solve_as(s, "10.0.0.2");
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 200);
+}
+
+TEST(HttpErrors, XRealIpIsBelievedOnlyFromATrustedFront) {
+  HeldWork work;
+  // Two work slots, one per client address; no trusted front: every request is from 127.0.0.1, whatever
+  // X-Real-IP says.
+  TestServer s(work.options(4, false));
+  std::thread holder([&s] { solve_as(s, "10.0.0.1"); });
+  work.wait_for(1);
+  auto forged = solve_as(s, "10.0.0.2");
+  ASSERT_TRUE(forged);
+  EXPECT_EQ(forged->status, 429);
+  work.release();
+  holder.join();
 }
 
 TEST(HttpErrors, DeadlineGives504AndCancelsTheSolve) {

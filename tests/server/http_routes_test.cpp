@@ -1,6 +1,9 @@
 // Every route answers in the documented format.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "server/json_codec.hpp"
 #include "test_server.hpp"
 
@@ -25,7 +28,13 @@ TEST_F(Routes, HealthMetricsAndOpenApi) {
   auto ready = c.Get("/readyz");
   ASSERT_TRUE(ready);
   EXPECT_EQ(ready->status, 200);
+  // The request counter is written by the server's logger after the answer has gone out, so a /metrics sent at
+  // once can arrive before it: ask again (a few times at most) until /livez is counted.
   auto metrics = c.Get("/metrics");
+  for (int i = 0; i < 50 && metrics && metrics->body.find("route=\"/livez\"") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    metrics = c.Get("/metrics");
+  }
   ASSERT_TRUE(metrics);
   EXPECT_EQ(metrics->status, 200);
   EXPECT_NE(metrics->body.find("lienewton_http_requests_total{route=\"/livez\""), std::string::npos);
@@ -177,10 +186,62 @@ TEST_F(Routes, RenderFramesAndHeatmap) {
   ASSERT_TRUE(from_result);
   ASSERT_EQ(from_result->status, 200) << from_result->body;
   EXPECT_TRUE(is_png(from_result->body));
+  // A result with its request beside it: drawn, not run again, and titled by the request (problem, group,
+  // solver); a cell outside that request's grid is refused naming it.
+  const std::string titled = R"({"problem":"paper-sine","methods":["newton-group"],"n":[3,4],"h":[0.25,0.5],"differential":"exact","format":"svg","sweep":)";
+  auto named = c.Post("/api/v1/render/heatmap", titled + result->body + "}", "application/json");
+  ASSERT_TRUE(named);
+  ASSERT_EQ(named->status, 200) << named->body;
+  EXPECT_NE(named->body.find(">Where each method converges: paper-sine on SO(N)</text>"), std::string::npos);
+  auto outside = c.Post("/api/v1/render/heatmap",
+                        R"({"problem":"paper-sine","methods":["newton-group"],"n":[3],"h":[0.25,0.5],"differential":"exact","sweep":)" +
+                            result->body + "}", "application/json");
+  ASSERT_TRUE(outside);
+  EXPECT_EQ(outside->status, 400) << outside->body;
+  EXPECT_EQ(json::parse(outside->body)["error"]["field"], "sweep.cells[2]");  // the first cell at n = 4
   auto heat_get = c.Get("/api/v1/render/heatmap?methods=newton-group&n=3,4&h=[0.25,0.5]&differential=exact");
   ASSERT_TRUE(heat_get);
   ASSERT_EQ(heat_get->status, 200) << heat_get->body;
   EXPECT_TRUE(is_png(heat_get->body));
+  // GET fills what it lacks as POST does: here the paper's 21 step sizes, the same picture byte for byte.
+  auto get_default_h = c.Get("/api/v1/render/heatmap?problem=paper-linear&differential=exact&methods=newton-group&n=3");
+  auto post_default_h = c.Post("/api/v1/render/heatmap",
+                               R"({"problem":"paper-linear","differential":"exact","methods":["newton-group"],"n":[3]})",
+                               "application/json");
+  ASSERT_TRUE(get_default_h && post_default_h);
+  ASSERT_EQ(get_default_h->status, 200) << get_default_h->body;
+  EXPECT_TRUE(is_png(get_default_h->body));
+  EXPECT_EQ(get_default_h->body, post_default_h->body);
+  // format=svg: the same picture as SVG, its caption as text; another format is refused naming the field.
+  auto svg = c.Get("/api/v1/render/heatmap?problem=paper-linear&differential=exact&methods=newton-group&n=3,4&h=1,2&format=svg");
+  ASSERT_TRUE(svg);
+  ASSERT_EQ(svg->status, 200) << svg->body;
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  EXPECT_EQ(svg->body.rfind("<svg ", 0), 0u);
+  EXPECT_NE(svg->body.find(">Where each method converges: paper-linear on SO(N)</text>"), std::string::npos);
+  EXPECT_NE(svg->body.find(">N = 3\u20264 \u00b7 h = 2\u2070\u20262\u00b9"), std::string::npos);  // wrapped between facts
+  EXPECT_NE(svg->body.find("differential exact \u00b7 tol 1e-13"), std::string::npos);
+  auto basins_svg = c.Post("/api/v1/render/basins",
+                           R"({"problem":"paper-linear","n":3,"h":4,"size":8,"methods":["newton-group","newton-algebra"],"format":"svg"})",
+                           "application/json");
+  ASSERT_TRUE(basins_svg);
+  ASSERT_EQ(basins_svg->status, 200) << basins_svg->body;
+  EXPECT_EQ(basins_svg->get_header_value("Content-Type"), "image/svg+xml");
+  EXPECT_NE(basins_svg->body.find(">From which starts each method converges: paper-linear on SO(3), h = 2\u00b2</text>"),
+            std::string::npos);
+  std::size_t images = 0;
+  for (std::size_t at = basins_svg->body.find("<image "); at != std::string::npos; at = basins_svg->body.find("<image ", at + 1)) ++images;
+  EXPECT_EQ(images, 2u);  // one raster panel per method
+  auto wp_svg = c.Post("/api/v1/render/work-precision",
+                       R"({"problem":"rigid-body","h":[0.25,0.125],"choices":[{"integrator":"implicit-euler"}],"format":"svg"})",
+                       "application/json");
+  ASSERT_TRUE(wp_svg);
+  ASSERT_EQ(wp_svg->status, 200) << wp_svg->body;
+  EXPECT_NE(wp_svg->body.find(">2\u207b\u00b3</text>"), std::string::npos);  // the h = 1/8 marker's label
+  auto bad_format = c.Get("/api/v1/render/heatmap?methods=newton-group&n=3&h=1&format=pdf");
+  ASSERT_TRUE(bad_format);
+  EXPECT_EQ(bad_format->status, 400);
+  EXPECT_EQ(json::parse(bad_format->body)["error"]["field"], "format");
   auto bad_metric = c.Post("/api/v1/render/heatmap", sweep + R"(,"metric":"speed"})", "application/json");
   ASSERT_TRUE(bad_metric);
   EXPECT_EQ(bad_metric->status, 400);

@@ -234,39 +234,53 @@ TEST(JsonCodec, ContinuationWatchdogAndPredictor) {
   EXPECT_EQ(on_solve.field, "predictor");
 }
 
-// restarts on every request that takes solver options (basins too), an integer in [0, 10000]; the codec reads it
-// alone (that it needs continuation is the core's check, core/solver_options.cpp).
-TEST(JsonCodec, Restarts) {
-  const json on = json{{"restarts", 64}, {"continuation", true}};
-  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).solver.restarts, 0);
-  EXPECT_EQ(solve_request_from_json(on, Limits{}).solver.restarts, 64);
-  EXPECT_EQ(sweep_request_from_json(on, Limits{}).solver.restarts, 64);
-  EXPECT_EQ(integrate_request_from_json(on, Limits{}).solver.restarts, 64);
-  EXPECT_EQ(work_precision_request_from_json(on, Limits{}).solver.restarts, 64);
-  EXPECT_EQ(basin_request_from_json(on, Limits{}).solve.solver.restarts, 64);
+// multistart on every request that takes solver options (basins too), an integer in [0, 10000], with or without
+// continuation; restarts, which it replaced, is an unknown field.
+TEST(JsonCodec, Multistart) {
+  const json on = json{{"multistart", 64}};
+  EXPECT_EQ(solve_request_from_json(parse_body("{}"), Limits{}).solver.multistart, 0);
+  EXPECT_EQ(solve_request_from_json(on, Limits{}).solver.multistart, 64);
+  EXPECT_EQ(sweep_request_from_json(on, Limits{}).solver.multistart, 64);
+  EXPECT_EQ(integrate_request_from_json(on, Limits{}).solver.multistart, 64);
+  EXPECT_EQ(work_precision_request_from_json(on, Limits{}).solver.multistart, 64);
+  EXPECT_EQ(basin_request_from_json(on, Limits{}).solve.solver.multistart, 64);
   for (const json& value : {json(-1), json(10001), json(2.5), json("8"), json(true)}) {
-    const json body = json{{"restarts", value}};
+    const json body = json{{"multistart", value}};
     for (const Failure& f : {failure_of([&] { solve_request_from_json(body, Limits{}); }),
                              failure_of([&] { sweep_request_from_json(body, Limits{}); }),
                              failure_of([&] { basin_request_from_json(body, Limits{}); })}) {
-      EXPECT_EQ(f.field, "restarts") << body.dump();
+      EXPECT_EQ(f.field, "multistart") << body.dump();
     }
   }
+  EXPECT_EQ(failure_of([] { solve_request_from_json(json{{"restarts", 8}}, Limits{}); }).field, "restarts");
 }
 
-// A continued result lists its stages; a restart stage also says which seeded start it ran from, other stages not.
-TEST(JsonCodec, ContinuationStagesNameTheirRestart) {
+// A result says which root it is and which search found it; a continued one lists its path's points, the
+// method's solves at h among them.
+TEST(JsonCodec, ResultSaysWhichRoot) {
   SolveResult r;
   r.y = Eigen::MatrixXd::Identity(3, 3);
-  r.continuation = {{32.0, Status::max_iterations, 100, 0.5, StageStart::given, Globalization::line_search, {}},
-                    {32.0, Status::converged, 11, 2e-15, StageStart::restart, Globalization::line_search, 29}};
-  const json stages = to_json(r, false)["continuation"]["stages"];
+  r.iterations = 3;
+  r.extra_iterations = 7;
+  r.branch = Branch::continued;
+  r.found_by = Search::continuation;
+  r.continuation = {{PathPointKind::path, 0.5, 0.25, 0.2, 0.9, 0.5, 4, 1e-12, Status::converged},
+                    {PathPointKind::final, 1.0, 0, 0, 0, 0, 3, 2e-15, Status::converged}};
+  const json j = to_json(r, false);
+  EXPECT_EQ(j["branch"], "continued");
+  EXPECT_EQ(j["found_by"], "continuation");
+  EXPECT_EQ(j["total_iterations"], 10);
+  EXPECT_FALSE(j.contains("fold_h"));
+  const json stages = j["continuation"]["stages"];
   ASSERT_EQ(stages.size(), 2u);
-  EXPECT_EQ(stages[0]["start"], "start");
-  EXPECT_FALSE(stages[0].contains("restart"));
-  EXPECT_EQ(stages[1]["start"], "restart");
-  EXPECT_EQ(stages[1]["restart"], 29);
-  EXPECT_EQ(to_json(r, false)["continuation"]["total_iterations"], 111);
+  EXPECT_EQ(stages[0]["kind"], "path");
+  EXPECT_EQ(stages[0]["dh_ds"], 0.9);
+  EXPECT_EQ(stages[1]["kind"], "final");
+  r.status = Status::fold;
+  r.fold_h = 0.75;
+  r.branch = Branch::other;
+  EXPECT_EQ(to_json(r, false)["fold_h"], 0.75);
+  EXPECT_EQ(to_json(r, false)["status"], "fold");
 }
 
 TEST(JsonCodec, SweepResultRoundTrips) {
@@ -352,6 +366,27 @@ TEST(JsonCodec, GroupIsReadByEveryRouteThatTakesAProblem) {
   EXPECT_EQ(f.field, "group");
 }
 
+// z is the group's matrix: 4 x 4 on SE(3), whose n stays 3 (n is the index whose matrices have z's size); on SO a z
+// without n names n by its size; a z of another size is refused naming z, in the group's terms.
+TEST(JsonCodec, ZIsSizedByTheGroup) {
+  const Limits limits;
+  const std::string t = "[[1,0,0,1],[0,1,0,2],[0,0,1,3],[0,0,0,1]]";
+  const SolveRequest se = solve_request_from_json(parse_body(R"({"group":"SE","z":)" + t + "}"), limits);
+  EXPECT_EQ(se.problem.n, 3);
+  ASSERT_TRUE(se.problem.z.has_value());
+  EXPECT_EQ(se.problem.z->rows(), 4);
+  EXPECT_EQ(solve_request_from_json(parse_body(R"({"z":)" + t + "}"), limits).problem.n, 4);
+  try {
+    solve_request_from_json(parse_body(R"({"group":"SE","z":[[1,0,0],[0,1,0],[0,0,1]]})"), limits);
+    ADD_FAILURE() << "read a 3 x 3 z on SE(3)";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(error_code(e), "invalid_field");
+    EXPECT_EQ(e.field(), "z");
+    EXPECT_NE(std::string(e.what()).find("4 x 4 array of rows of finite numbers (an element of SE(3))"),
+              std::string::npos) << e.what();
+  }
+}
+
 // Every row of the field table is a field its routes take (null counts as absent) and no other route's.
 TEST(JsonCodec, EachRouteTakesTheRowsOfItsRoutes) {
   const Limits limits;
@@ -361,7 +396,9 @@ TEST(JsonCodec, EachRouteTakesTheRowsOfItsRoutes) {
       {fields::basins, [&](const json& b) { basin_request_from_json(b, limits); }},
       {fields::integrate, [&](const json& b) { integrate_request_from_json(b, limits); }},
       {fields::work_precision, [&](const json& b) { work_precision_request_from_json(b, limits); }}};
-  for (const auto& [route, read] : routes) {
+  for (const auto& entry : routes) {
+    const auto& route = entry.first;
+    const auto& read = entry.second;  // a named reference: clang 14 cannot capture a structured binding
     for (const fields::Field& row : fields::request_fields()) {
       const json body{{row.name, nullptr}};
       if (fields::find(route, row.name)) {

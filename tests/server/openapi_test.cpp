@@ -14,6 +14,7 @@
 #include "server/json_codec.hpp"
 #include "server/render_requests.hpp"
 #include "server/routes.hpp"
+#include "server/server_options.hpp"
 #include "test_server.hpp"
 
 namespace lienewton::service {
@@ -61,8 +62,40 @@ TEST(OpenApi, DocumentMatchesTheRegisteredRoutes) {
   }
 }
 
+// A client plans with the running server's caps (its flags), not the defaults: the basin size they allow for
+// k methods, floor(sqrt(max_values / (basin_pixel_values k))), is accepted and one more is refused.
+TEST(OpenApi, PublishesTheRunningServersLimits) {
+  ServerOptions options;
+  options.output.max_values = 30'000;
+  options.limits.max_grid_cells = 777;
+  options.request_timeout = 11;
+  options.sweep_timeout = 13;
+  testing::TestServer s(options);
+  auto c = s.client();
+  auto res = c.Get("/openapi.json");
+  ASSERT_TRUE(res);
+  const json limits = json::parse(res->body)["x-lienewton"]["output_limits"];
+  EXPECT_EQ(limits["max_values"], 30'000);
+  EXPECT_EQ(limits["max_grid_cells"], 777);
+  EXPECT_EQ(limits["max_image_pixels"], OutputLimits{}.max_image_pixels);
+  EXPECT_EQ(limits["request_seconds"], 11.0);
+  EXPECT_EQ(limits["sweep_seconds"], 13.0);
+  const double per_pixel = limits["basin_pixel_values"].get<double>() * 2;  // two methods
+  const int largest = static_cast<int>(std::floor(std::sqrt(30'000 / per_pixel)));
+  const auto basin = [&](int size) {
+    const json body{{"size", size}, {"methods", {"newton-group", "newton-algebra"}}, {"max_iterations", 1}};
+    return c.Post("/api/v1/basins", body.dump(), "application/json");
+  };
+  auto over = basin(largest + 1);
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 413) << over->body;
+  auto at = basin(largest);
+  ASSERT_TRUE(at);
+  EXPECT_EQ(at->status, 200) << at->body;
+}
+
 TEST(OpenApi, RequestSchemasListTheCodecFields) {
-  const json doc = json::parse(openapi_document());
+  const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
   for (const char* f : {"problem", "n", "h", "method", "differential", "tol", "max_iterations", "seed", "z",
                         "include_iterates", "rigid_body"}) {
@@ -77,7 +110,7 @@ TEST(OpenApi, RequestSchemasListTheCodecFields) {
 // Each bounded field has one row in core/fields.hpp: the schema shows the row's bounds, the codec refuses the
 // first value beyond each bound with the row's message, and core validation refuses it with the same message.
 TEST(OpenApi, FieldTableBoundsAreTheSchemaTheCodecAndTheCore) {
-  const json doc = json::parse(openapi_document());
+  const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
   const json& integrate = doc["components"]["schemas"]["IntegrateRequest"]["properties"];
   const Limits limits = Limits::unlimited();
@@ -122,7 +155,7 @@ TEST(OpenApi, FieldTableBoundsAreTheSchemaTheCodecAndTheCore) {
 // The request contract is written once: a request schema lists exactly the rows of the field table its route
 // takes, a render schema its picture options.
 TEST(OpenApi, RequestSchemasAreTheFieldTable) {
-  const json doc = json::parse(openapi_document());
+  const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& schemas = doc["components"]["schemas"];
   const std::pair<const char*, fields::Route> requests[] = {
       {"SolveRequest", fields::solve}, {"SweepRequest", fields::sweep}, {"BasinRequest", fields::basins},
@@ -137,7 +170,7 @@ TEST(OpenApi, RequestSchemasAreTheFieldTable) {
   const std::pair<const char*, fields::Route> renders[] = {
       {"RenderFramesRequest", fields::render_frames}, {"RenderHeatmapRequest", fields::render_heatmap},
       {"RenderBasinsRequest", fields::render_basins}, {"RenderWorkPrecisionRequest", fields::render_work_precision},
-      {"RenderResidualsRequest", fields::render_residuals}};
+      {"RenderResidualsRequest", fields::render_residuals}, {"RenderInvariantsRequest", fields::render_invariants}};
   for (const auto& [name, route] : renders) {
     std::set<std::string> listed, rows;
     for (const auto& [key, _] : schemas[name]["properties"].items()) listed.insert(key);
@@ -149,7 +182,7 @@ TEST(OpenApi, RequestSchemasAreTheFieldTable) {
 
 // Descriptions are built from the code's constants, never typed again.
 TEST(OpenApi, DescriptionsReadTheConstants) {
-  const json doc = json::parse(openapi_document());
+  const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
   const auto has = [](const json& text, const std::string& part) {
     return text.get<std::string>().find(part) != std::string::npos;
@@ -172,7 +205,7 @@ std::string css(render::Color c) {
 // The dashboard reads its words and colours from "x-lienewton": every value the API accepts or answers has a
 // label, a short label and a description, every status a colour, and the colours are the renderer's.
 TEST(OpenApi, ExtensionLabelsEveryEnumValue) {
-  const json doc = json::parse(openapi_document());
+  const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& schemas = doc["components"]["schemas"];
   const json& ext = doc["x-lienewton"];
   const std::pair<const char*, json> published[] = {

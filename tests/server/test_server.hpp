@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -104,8 +107,24 @@ class SharedServerTest : public ::testing::Test {
     server_ = nullptr;
   }
   static httplib::Client client() { return server_->client(); }
+  // POST a JSON body; expects `status` and returns the parsed answer (null when there was none).
+  static nlohmann::json post(const std::string& path, const std::string& body, int status = 200) {
+    auto res = server_->client().Post(path, body, "application/json");
+    EXPECT_TRUE(res);
+    if (!res) return nlohmann::json();
+    EXPECT_EQ(res->status, status) << res->body;
+    return nlohmann::json::parse(res->body);
+  }
   static inline TestServer* server_ = nullptr;
 };
+
+// A matrix from the API's array of rows.
+inline Eigen::MatrixXd matrix_from_rows(const nlohmann::json& rows) {
+  Eigen::MatrixXd m(rows.size(), rows[0].size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < rows[i].size(); ++j) m(i, j) = rows[i][j].get<double>();
+  return m;
+}
 
 inline int raw_status(const std::string& response) {
   if (response.size() < 12) return -1;

@@ -2,18 +2,26 @@
 // (a, b); the map streams in row by row (NDJSON) into one canvas per method, each pixel in its root's hue
 // shaded by iterations (light = few) or in its failure class' colour, as the server's PNG draws it. Hover a
 // pixel for its numbers; click it (or Enter) to open that start as a solve, with y0 filled in.
-import { postImage, stream } from '../shared/api.js';
+import { postImage, postJSON, postSvg, stream } from '../shared/api.js';
 import { catalog } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { imageWidth } from '../shared/image_width.js';
-import { actions, checkboxes, contractNumber, select, spec } from '../shared/fields.js';
+import { actions, checkboxes, contractNumber, folded, select, spec } from '../shared/fields.js';
 import { checkedValues, runner, value } from '../shared/form.js';
 import { DIFFERENTIALS, METHODS, STATUSES, fmtExp, label } from '../shared/labels.js';
-import { DEFAULTS, problemFields } from '../shared/request.js';
+import { DEFAULTS, fieldValues, problemFields, problemOf } from '../shared/request.js';
+import { download, sharePanel } from '../shared/share.js';
 import { statusBadge } from '../shared/summary.js';
+import { SWEEP_SECONDS, duration, paceText, planBadge, planText, prober, tooLongText } from '../shared/plan.js';
 
 const MIN_PANEL = 200;  // pixels per method's panel in the server PNG, with room for its title
 const MAX_SIZE = spec('BasinRequest', 'size').maximum;
+// The largest size this server's output cap allows for k methods (size^2 x k pixels, each a few numbers).
+const { max_values: MAX_VALUES, basin_pixel_values: PIXEL_VALUES } = catalog.output_limits;
+const maxSize = (k) => Math.min(MAX_SIZE, Math.floor(Math.sqrt(MAX_VALUES / (PIXEL_VALUES * k))));
+
+// The side of the map the plan's probe solves.
+const PROBE_SIZE = 32;
 
 const ROOTS = catalog.colors.basin_roots;
 const DARKEST = catalog.colors.basin_darkest;
@@ -24,11 +32,12 @@ export function createBasinsPanel(root, { openSolve }) {
     checkboxes('methods', 'Methods', METHODS, METHODS.map(([m]) => m), ['method']),
     select('differential', 'Differential', DIFFERENTIALS, 'exact'),
     contractNumber('BasinRequest', 'size', 'Pixels per side', { value: 96, hint: 'The grid is size \u00d7 size starts' }),
-    contractNumber('BasinRequest', 'r', 'Half-width r of the square',
-      { value: Number(spec('BasinRequest', 'r').default.toFixed(6)), hint: 'a, b in [\u2212r, r]; default \u03c0' }),
-    contractNumber('BasinRequest', 'tol', 'Tolerance on \u2016f(y)\u2016'),
-    contractNumber('BasinRequest', 'max_iterations', 'Max iterations'),
-    contractNumber('BasinRequest', 'seed', 'Seed of z'),
+    folded('More options: square, tolerance, seed',
+      contractNumber('BasinRequest', 'r', 'Half-width r of the square',
+        { value: Number(spec('BasinRequest', 'r').default.toFixed(6)), hint: 'a, b in [\u2212r, r]; default \u03c0' }),
+      contractNumber('BasinRequest', 'tol', 'Tolerance on \u2016f(y)\u2016'),
+      contractNumber('BasinRequest', 'max_iterations', 'Max iterations'),
+      contractNumber('BasinRequest', 'seed', 'Seed of z')),
     actions());
   const live = el('p', { class: 'live', role: 'status' },
     'Press Run to map from which starts y\u2080 = z exp(a B\u2081 + b B\u2082) each method converges.');
@@ -38,12 +47,77 @@ export function createBasinsPanel(root, { openSolve }) {
     el('p', { class: 'hint' }, 'Hover or tap a pixel to see where its start went; click to open it in Solve.'));
   const image = el('figure', { class: 'heatmap', hidden: true },
     el('div', { class: 'scroll-x' }, el('img', { id: 'basin-img', alt: 'Server-rendered basin map, one panel per method' })),
-    el('figcaption', {}, 'Server-rendered basin map (PNG): a to the right, b upward, one panel per method.'));
-  const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend, image);
-  root.append(form, output);
-
-  const start = runner(form, live);
+    el('figcaption', {}, 'Server-rendered basin map (PNG): a to the right, b upward, one panel per method. ',
+      el('button', { type: 'button', dataset: { share: 'svg' }, onclick: () => postSvg('/api/v1/render/basins', last.request)
+        .then((text) => download('basin-map.svg', 'image/svg+xml', text))
+        .catch((err) => { live.textContent = `Failed: ${err.message}`; }) }, 'Download SVG')));
   let last = null; // { request, rows, roots, result, panels }
+  const requestOf = () => ({ ...problemOf(form), n: value(form, 'n'), h: value(form, 'h'),
+    methods: checkedValues(form, 'methods'), differential: value(form, 'differential'), size: value(form, 'size'),
+    r: value(form, 'r'), tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
+    seed: value(form, 'seed') });
+  const share = sharePanel(form, {
+    requests: () => [{ path: '/api/v1/basins', body: requestOf() }],
+    data: () => last?.result && { name: 'basin-map', columns: PIXEL_COLUMNS, rows: pixelRows(last),
+      json: { request: last.request, grid: { a: last.axis, z: last.z, b1: last.b1, b2: last.b2 }, rows: last.rows,
+        roots: last.result.roots, methods: last.result.methods } },
+  });
+  const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend,
+    share.element, el('details', { class: 'view', id: 'basins-png' },
+      el('summary', {}, 'As the server\u2019s PNG (for a slide or a paper)'), image));
+  root.append(form, output);
+  const start = runner(form, live);
+
+  // The plan, before Run: a PROBE_SIZE map of the same square, methods and problem; its time per start, times
+  // size^2 starts, is the estimate (cost is spread over the square, so a coarse map samples it fairly). The
+  // size hint says what this server allows for the ticked methods: its output cap and its time limit.
+  const sizeHint = form.querySelector('.field[data-field="size"] .hint');
+  const probe = prober();
+  const badge = planBadge(form);
+  let planned = null;  // { key, perStart } or { key, timedOut }
+  let planTimer = null;
+  async function plan() {
+    if (form.getAttribute('aria-busy') === 'true' || root.closest('[hidden]')) return;
+    const request = requestOf();
+    const k = Math.max(1, request.methods.length);
+    const cap = maxSize(k);
+    const hint = `The grid is size \u00d7 size starts; at most ${cap} with ${k} method${k > 1 ? 's' : ''} (the server\u2019s output cap)`;
+    sizeHint.textContent = hint;
+    badge.clear();
+    if (!request.methods.length || !Number.isInteger(request.size) || request.size < 1) return;
+    const { size, ...rest } = request;
+    const key = JSON.stringify(rest);
+    if (planned?.key !== key) {
+      const sample = { ...rest, size: Math.min(size, PROBE_SIZE) };
+      const answer = await probe((signal) => postJSON('/api/v1/basins', sample, { signal })).catch(() => null);
+      if (!answer) return;
+      planned = answer.timedOut ? { key, timedOut: true, byServer: answer.byServer, probeSize: sample.size }
+        : { key, perStart: answer.seconds / (sample.size * sample.size), probeSize: sample.size };
+    }
+    const starts = size * size * k;
+    const probeWords = `${planned.probeSize} \u00d7 ${planned.probeSize} probe`;
+    if (planned.timedOut) {
+      live.textContent = tooLongText({ count: starts, unit: 'starts', probe: probeWords, byServer: planned.byServer });
+      badge.say({ count: starts, unit: 'starts', seconds: null });
+      return;
+    }
+    const seconds = planned.perStart * size * size;
+    // The largest size that fits in the server's time limit at the probe's pace (and its output cap).
+    const inTime = Math.min(cap, Math.floor(Math.sqrt(SWEEP_SECONDS / Math.max(planned.perStart, 1e-9))));
+    sizeHint.textContent = `${hint}; at ${size}: ${duration(seconds)}` +
+      (inTime < cap ? `; at most about ${inTime} in the server\u2019s ${SWEEP_SECONDS} s limit` : '');
+    live.textContent = `${planText({ count: starts, unit: 'starts', seconds, probe: probeWords })} Press Run.`;
+    live.dataset.estimate = String(seconds);
+    badge.say({ count: starts, unit: 'starts', seconds });
+    Object.assign(planned, { seconds, size });
+  }
+  const replan = () => {
+    clearTimeout(planTimer);
+    planTimer = setTimeout(plan, 300);
+  };
+  form.addEventListener('input', replan);
+  form.addEventListener('change', replan);
+  new IntersectionObserver((seen) => { if (seen.some((x) => x.isIntersecting)) replan(); }).observe(form);
   let imageUrl = null;
 
   function pixelColor(px, lo, hi) {
@@ -122,7 +196,7 @@ export function createBasinsPanel(root, { openSolve }) {
   function open(m, { row, column }) {
     const q = last.request;
     const y0 = startPoint(last.z, last.b1, last.b2, last.axis[column], last.axis[row]);
-    openSolve({ problem: q.problem, n: q.n, h: q.h, method: q.methods[m], differential: q.differential,
+    openSolve({ ...fieldValues(q), n: q.n, h: q.h, method: q.methods[m], differential: q.differential,
       tol: q.tol, max_iterations: q.max_iterations, seed: q.seed, y0: JSON.stringify(y0) });
   }
 
@@ -170,17 +244,19 @@ export function createBasinsPanel(root, { openSolve }) {
 
   form.addEventListener('submit', async (e) => {
     e.preventDefault();
+    clearTimeout(planTimer);  // a plan made now would overwrite the run's status line
+    probe.cancel();
+    if (last) last.result = null;
+    share.refresh();
     await start(async (signal, progress) => {
-      const request = { problem: value(form, 'problem'), n: value(form, 'n'), h: value(form, 'h'),
-        methods: checkedValues(form, 'methods'), differential: value(form, 'differential'), size: value(form, 'size'),
-        r: value(form, 'r'), tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
-        seed: value(form, 'seed') };
+      const request = requestOf();
       const size = Number.isInteger(request.size) && request.size > 0 && request.size <= MAX_SIZE ? request.size : 1;
       const panels = request.methods.map((m, i) => makePanel(m, i, size));
       maps.replaceChildren(...panels.map((p) => p.figure));
       image.hidden = true;
       last = { request, rows: [], roots: [], panels, axis: [], z: null, b1: null, b2: null };
       progress.max = size;
+      const began = performance.now();
       const result = await stream('/api/v1/basins', request, { signal, onRecord(rec) {
         if (rec.type === 'grid') {
           Object.assign(last, { axis: rec.a, z: rec.z, b1: rec.b1, b2: rec.b2 });
@@ -191,18 +267,29 @@ export function createBasinsPanel(root, { openSolve }) {
         last.roots.push(...rec.new_roots);
         paintRow(rec, 1, request.max_iterations); // provisional shading; repaint() uses the final range
         progress.value = last.rows.length;
-        live.textContent = `${last.rows.length} of ${size} rows classified, ${last.roots.length} roots so far\u2026`;
+        live.textContent = `${paceText(last.rows.length * size * request.methods.length, size * size * request.methods.length,
+          'starts', began).replace('\u2026', '')}, ${last.roots.length} roots so far\u2026`;
       } }).catch((err) => {
         if (last.rows.length) repaint();
         throw err;
       });
       last.result = result;
       repaint();
-      live.textContent = `${size} \u00d7 ${size} starts per method in ${(result.seconds ?? 0).toFixed(2)} s, ` +
+      const estimate = planned?.seconds && planned.size === size && planned.key === JSON.stringify({ ...request, size: undefined }) ? ` (estimated: ${duration(planned.seconds)})` : '';
+      live.textContent = `${size} \u00d7 ${size} starts per method in ${(result.seconds ?? 0).toFixed(2)} s${estimate}, ` +
         `${result.roots.length} roots. Hover a pixel for its numbers.`;
+      share.refresh();
       await renderImage(signal);
     });
   });
+  return { share };
+}
+
+// One CSV row per start and method: where it is on the square, and what became of it.
+const PIXEL_COLUMNS = ['method', 'row', 'column', 'a', 'b', 'status', 'root', 'iterations'];
+function pixelRows({ request, rows, axis }) {
+  return request.methods.flatMap((method, m) => rows.flatMap((r) => r.methods[m].status.map((status, c) =>
+    [method, r.row, c, axis[c], axis[r.row], status, r.methods[m].root[c], r.methods[m].iterations[c]])));
 }
 
 function parseRgb(css) {

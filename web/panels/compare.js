@@ -1,15 +1,17 @@
 // Compare panel: one problem solved by several method/differential pairs, one after the other (the server
 // caps concurrent streams), with every residual curve on one chart and a results table.
-import { ApiError, stream } from '../shared/api.js';
+import { ApiError, postJSON, stream } from '../shared/api.js';
 import { residualChart, residualTimeChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, choiceMatrix } from '../shared/fields.js';
+import { actions, choiceMatrix, folded } from '../shared/fields.js';
 import { checkedValues, runner } from '../shared/form.js';
 import { runFrames } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, iterateText, label, mathText } from '../shared/labels.js';
 import { limitFields, problemFields, readCommon } from '../shared/request.js';
+import { sharePanel } from '../shared/share.js';
 import { statusBadge } from '../shared/summary.js';
+import { REPEATS, spreadText, withinNoise } from '../shared/repeats.js';
 
 // One row per method; a method that forms no differential gets a single tick.
 const ROWS = entries('method').map((m) => ({ key: m.value, text: m.short, single: !m.uses_differential }));
@@ -24,7 +26,7 @@ export function createComparePanel(root) {
     problemFields(),
     choiceMatrix('runs', 'Methods and differentials', ROWS, DIFFERENTIALS_SHORT,
       ['fixed-point|exact', 'newton-group|exact', 'newton-algebra|exact', 'newton-group|finite-difference'], runLabel),
-    limitFields(),
+    folded('More options: tolerance, iterations, seed', limitFields()),
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the methods to compare and press Run.');
   const chartBox = el('div', { class: 'chart', id: 'compare-chart' });
@@ -33,13 +35,28 @@ export function createComparePanel(root) {
   const frames = runFrames('compare-frames', 'Rotation frames of the iterates (N = 3)', 'Iterate n',
     'Iterates y\u2080 \u2026 y\u2099 of the chosen run as rotated frames (server-rendered PNG): y\u2099 bold, '
     + 'earlier ones fainter, z dashed.');
+  // The solves Run sends, one per ticked method and differential.
+  function requestsOf() {
+    const picks = checkedValues(form, 'runs').map((v) => v.split('|'));
+    if (!picks.length) throw new ApiError('Tick at least one method.', { field: 'runs' });
+    return picks.map(([method, differential]) => ({ path: '/api/v1/solve',
+      body: { ...readCommon(form), method, differential, include_iterates: false } }));
+  }
+  let last = null;  // [{ label, request, result, trace }] of the last run
+  const share = sharePanel(form, {
+    requests: requestsOf,
+    data: () => last && { name: 'compare-traces', columns: ['run', 'method', 'differential', ...TRACE_COLUMNS],
+      rows: last.flatMap((r) => r.trace.map((t) => [r.label, r.request.method, r.request.differential,
+        ...TRACE_COLUMNS.map((c) => t[c] ?? null)])),
+      json: last },
+  });
   root.append(form, el('div', { class: 'output' }, live,
     el('div', { class: 'chart-pair' },
-      el('figure', {}, el('figcaption', {}, 'Residual against solver CPU time (speed vs accuracy)'), timeBox),
+      el('figure', {}, el('figcaption', {}, 'Residual against solver CPU time, iteration by iteration'), timeBox),
       el('figure', {}, el('figcaption', {}, 'Residual against iteration n'), chartBox)),
     el('p', { class: 'hint' }, 'Times are the solver\u2019s own CPU time (cpu_seconds of each trace record), not the '
       + 'HTTP round trip. \u201cTime to tol\u201d is the CPU time of the first iterate with \u2016f\u2016 \u2264 tol.'),
-    tableBox, frames.element));
+    tableBox, frames.element, share.element));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -50,19 +67,24 @@ export function createComparePanel(root) {
     const times = picks.map(() => [[], []]);
     const rows = [];
     const requests = [];
+    const runs = [];
     tableBox.replaceChildren();
     frames.hide();
+    last = null;
+    share.refresh();
     await start(async (signal, progress) => {
-      if (!picks.length) throw new ApiError('Tick at least one method.', { field: 'runs' });
+      const sends = requestsOf();
       const chart = residualChart(chartBox, labels);
       const timeChart = residualTimeChart(timeBox, labels);
       const { tol } = readCommon(form);
       progress.max = picks.length;
       for (const [i, [method, differential]] of picks.entries()) {
-        const request = { ...readCommon(form), method, differential, include_iterates: false };
+        const request = sends[i].body;
+        const trace = [];
         live.textContent = `Running ${labels[i]} (${i + 1} of ${picks.length})\u2026`;
         const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
           if (rec.type !== 'iteration') return;
+          trace.push(rec);
           columns[i].push(rec.residual);
           times[i][0].push(rec.cpu_seconds);
           times[i][1].push(rec.residual);
@@ -74,17 +96,50 @@ export function createComparePanel(root) {
         progress.value = i + 1;
         rows.push([labels[i], result, timeToTol(times[i], tol)]);
         requests.push(request);
+        runs.push({ label: labels[i], request, result, trace });
         tableBox.replaceChildren(resultsTable(rows));
       }
+      last = runs;
       live.textContent = `Compared ${picks.length} runs.`;
       // Every N = 3 run's iterates as frames: the server re-runs the chosen solve to draw iterates 0..n.
       if (requests[0].n === 3) {
         frames.show(requests.map((request, i) => ({ label: labels[i], request, count: columns[i].length,
           describe: (n) => iterateText(n, columns[i][n]) })));
       }
+      // One run's CPU time is noise at the microsecond scale: each run again REPEATS times, median and range.
+      for (const [i, { request }] of runs.entries()) {
+        live.textContent = `Timing ${labels[i]} again (${REPEATS} runs)\u2026`;
+        const cpu = [];
+        for (let k = 0; k < REPEATS; k += 1) cpu.push((await postJSON('/api/v1/solve', request, { signal })).cpu_seconds);
+        cpu.sort((a, b) => a - b);
+        runs[i].cpu_repeats = cpu;
+        rows[i].push(cpu);
+      }
+      tableBox.replaceChildren(resultsTable(rows), noiseNote(rows));
+      live.textContent = `Compared ${picks.length} runs, each timed ${REPEATS} times more.`;
     });
+    share.refresh();
   });
+  return { share };
 }
+
+// Which runs' CPU times overlap (min..max of the repeats): their order is noise, not a finding.
+function noiseNote(rows) {
+  const timed = rows.filter((r) => r[3]);
+  const pairs = [];
+  for (let i = 0; i < timed.length; i += 1) {
+    for (let j = i + 1; j < timed.length; j += 1) {
+      const [a, b] = [timed[i][3], timed[j][3]];
+      if (withinNoise(a, b)) pairs.push(`${timed[i][0]} and ${timed[j][0]}`);
+    }
+  }
+  return el('p', { class: 'hint', id: 'compare-noise' }, pairs.length
+    ? `Within the noise (their ranges of ${REPEATS} runs overlap): ${pairs.join('; ')}.`
+    : `No two runs\u2019 ranges of ${REPEATS} CPU times overlap.`);
+}
+
+// The trace record's fields, in the order of the CSV's columns.
+const TRACE_COLUMNS = ['iteration', 'residual', 'step', 'cpu_seconds', 'seconds'];
 
 // CPU seconds of the first iterate whose residual is at most tol, or null when none is.
 function timeToTol([cpu, residual], tol) {
@@ -95,12 +150,14 @@ function timeToTol([cpu, residual], tol) {
 function resultsTable(rows) {
   // The reason last: on a phone its long text pushes what follows out of view.
   const head = ['Method', 'Status', 'Iterations', 'Rate r', 'Final \u2016f\u2016', 'Time to tol (CPU)', 'Solver CPU time',
-    'Why'];
+    `CPU time, median of ${REPEATS} (range)`, 'Why'];
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
-    el('tbody', {}, rows.map(([name, r, ttol]) => el('tr', {},
+    el('tbody', {}, rows.map(([name, r, ttol, cpu]) => el('tr', {},
       el('th', { scope: 'row' }, name), el('td', {}, statusBadge(r.status)),
       el('td', {}, String(r.iterations)), el('td', {}, fmtRate(r.rate)), el('td', {}, fmtExp(r.residual)),
       el('td', { 'data-col': 'time-to-tol' }, ttol === null ? 'not reached' : fmtSeconds(ttol)),
-      el('td', { 'data-col': 'cpu-seconds' }, fmtSeconds(r.cpu_seconds)), el('td', { class: 'why' }, mathText(r.reason))))));
+      el('td', { 'data-col': 'cpu-seconds' }, fmtSeconds(r.cpu_seconds)),
+      el('td', { 'data-col': 'cpu-median' }, cpu ? spreadText(cpu) : '\u2026'),
+      el('td', { class: 'why' }, mathText(r.reason))))));
 }

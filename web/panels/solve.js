@@ -3,11 +3,12 @@
 import { stream } from '../shared/api.js';
 import { residualChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, contractNumber, field, select } from '../shared/fields.js';
+import { actions, contractNumber, field, folded, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { frameStepper } from '../shared/frame_stepper.js';
 import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
+import { sharePanel } from '../shared/share.js';
 import { resultList } from '../shared/summary.js';
 
 export function createSolvePanel(root) {
@@ -16,12 +17,13 @@ export function createSolvePanel(root) {
     select('method', 'Method', METHODS, DEFAULTS.method),
     select('differential', 'Differential', DIFFERENTIALS, DEFAULTS.differential,
       'Ignored by the fixed-point method'),
-    select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'Newton methods only'),
-    select('continuation', 'Continuation in h', CONTINUATION, 'false', 'On: every stage streams, the last is at h'),
-    contractNumber('SolveRequest', 'restarts', 'Restarts', { hint: 'With continuation: seeded starts tried last' }),
-    limitFields(),
-    field('y0', 'Start guess y\u2080 (JSON rows; empty: y\u2080 = z)', el('textarea', { name: 'y0', rows: 3,
-      spellcheck: 'false', autocomplete: 'off' }), 'Filled when a basin map pixel is opened here'),
+    folded('More options: Newton variant, continuation, tolerance, start',
+      select('globalization', 'Newton variant', GLOBALIZATIONS, 'none', 'Newton methods only'),
+      select('continuation', 'Continuation in h', CONTINUATION, 'false', 'On: follows z\u2019s branch of roots from h = 0; path points stream'),
+      contractNumber('SolveRequest', 'multistart', 'Multistart', { hint: 'Seeded starts tried when no root was found' }),
+      limitFields(),
+      field('y0', 'Start guess y\u2080 (JSON rows; empty: y\u2080 = z)', el('textarea', { name: 'y0', rows: 3,
+        spellcheck: 'false', autocomplete: 'off' }), 'Filled when a basin map pixel is opened here')),
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to solve y = z exp(h g(y)).');
   const chartBox = el('div', { class: 'chart', id: 'solve-chart' });
@@ -29,20 +31,36 @@ export function createSolvePanel(root) {
   const frames = frameStepper('solve-frames', 'Iterate n',
     'Iterates y\u2080 \u2026 y\u2099 as rotated frames (server-rendered PNG): y\u2099 bold, earlier ones fainter, z dashed.');
   const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
-  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames.element), table));
 
   const newChart = () => residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
   let chart = null; // none before the first run: the box shows a placeholder
   const start = runner(form, live);
+  let last = null;  // { request, records, result } of the last run
 
-  async function run() {
+  function requestOf() {
     const request = { ...readCommon(form), method: value(form, 'method'),
       differential: value(form, 'differential'), globalization: value(form, 'globalization'),
       continuation: value(form, 'continuation') === 'true', include_iterates: false };
-    if (request.continuation) request.restarts = value(form, 'restarts');
+    const multistart = value(form, 'multistart');
+    if (multistart !== '') request.multistart = multistart;  // empty: the server's default
     const y0 = value(form, 'y0');
     if (y0) request.y0 = parseOr(y0);
+    return request;
+  }
+  const share = sharePanel(form, {
+    requests: () => [{ path: '/api/v1/solve', body: requestOf() }],
+    data: () => last && { name: 'solve-trace', columns: TRACE_COLUMNS,
+      rows: last.records.map((r) => TRACE_COLUMNS.map((c) => r[c] ?? null)),
+      json: { request: last.request, result: last.result, trace: last.records } },
+  });
+  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames.element), table,
+    share.element));
+
+  async function run() {
+    const request = requestOf();
     const records = [];
+    last = null;
+    share.refresh();
     let queued = false;
     const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
     summary.replaceChildren();
@@ -53,6 +71,10 @@ export function createSolvePanel(root) {
     await start(async (signal, progress) => {
       if (Number.isFinite(request.max_iterations)) progress.max = request.max_iterations;
       const result = await stream('/api/v1/solve', request, { signal, onRecord(rec) {
+        if (rec.type === 'path_point') {
+          live.textContent = `Continuation: path point at h = ${rec.stage_h.toPrecision(4)}`;
+          return;
+        }
         if (rec.type !== 'iteration') return;
         records.push(rec);
         progress.value = rec.iteration;
@@ -60,6 +82,7 @@ export function createSolvePanel(root) {
         if (!queued) { queued = true; requestAnimationFrame(draw); }
       } });
       draw();
+      last = { request, records, result };
       live.textContent = `Done: ${records.length} iterates streamed.`;
       summary.replaceChildren(resultList(result));
       table.querySelector('.table-wrap').replaceChildren(traceTable(records));
@@ -69,10 +92,12 @@ export function createSolvePanel(root) {
         frames.show(request, records.length, (n) => iterateText(n, records[n].residual));
       }
     });
+    share.refresh();
   }
 
   form.addEventListener('submit', (e) => { e.preventDefault(); run(); });
   return {
+    share,
     // A request without y0 (a stability-map cell) starts at z again.
     open(request) {
       form.elements.namedItem('y0').value = '';
@@ -86,6 +111,9 @@ export function createSolvePanel(root) {
 function parseOr(text) {
   try { return JSON.parse(text); } catch { return text; }
 }
+
+// The trace record's fields, in the order of the CSV's columns.
+const TRACE_COLUMNS = ['iteration', 'residual', 'step', 'angle', 'distance_to_pi', 'orthogonality_error', 'seconds', 'cpu_seconds'];
 
 function traceTable(records) {
   const head = ['n', '\u2016f(y\u2099)\u2016', 'step \u2016u\u2016', 'angle', '\u03c0 \u2212 angle', '\u2016y\u1d40y \u2212 I\u2016', 'time'];

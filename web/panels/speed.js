@@ -1,14 +1,18 @@
 // Speed vs accuracy panel: a work-precision chart (log CPU time against log global error), one series per
-// ticked integrator/method/differential, and for the rigid body the energy over time of each choice.
+// ticked integrator/method/differential, and for a problem with invariants (rigid-body: energy; heavy-top: energy and
+// vertical angular momentum, as the server's catalog lists them) each invariant's drift over time per choice.
 import { ApiError, postJSON } from '../shared/api.js';
-import { energyChart, workPrecisionChart } from '../shared/chart.js';
+import { invariantChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
-import { actions, choiceMatrix, contractNumber, number, range, select } from '../shared/fields.js';
+import { actions, choiceMatrix, contractNumber, folded, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
 import { runFrames } from '../shared/frame_stepper.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
+import { programFields, problemOf } from '../shared/request.js';
+import { sharePanel } from '../shared/share.js';
 import { statusBadge } from '../shared/summary.js';
+import { REPEATS, median, withinNoise } from '../shared/repeats.js';
 
 // Frames of the trajectory: every step up to the API's cap of 1000, then evenly spaced (the server says which
 // steps in frame_steps).
@@ -40,104 +44,203 @@ function describe(row, differential) {
 export function createSpeedPanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Work-precision request' },
     select('problem', 'Problem', PROBLEMS, 'rigid-body'),
-    contractNumber('WorkPrecisionRequest', 'n', 'Dimension N'),
-    contractNumber('WorkPrecisionRequest', 't_end', 'End time t_end'),
+    programFields(),
     range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2\u1d4f for each whole k'),
-    number('energy_h', 'Step size h of the energy plot', 0.0625, 'Rigid body only'),
-    contractNumber('WorkPrecisionRequest', 'tol', 'Tolerance'),
-    contractNumber('WorkPrecisionRequest', 'max_iterations', 'Max iterations'),
-    contractNumber('WorkPrecisionRequest', 'seed', 'Seed'),
+    folded('More options: N, t_end, invariants plot, tolerance, seed',
+      contractNumber('WorkPrecisionRequest', 'n', 'Dimension N'),
+      contractNumber('WorkPrecisionRequest', 't_end', 'End time t_end'),
+      number('energy_h', 'Step size h of the invariants plot', 0.0625, 'Problems with invariants: rigid-body, heavy-top'),
+      contractNumber('WorkPrecisionRequest', 'tol', 'Tolerance'),
+      contractNumber('WorkPrecisionRequest', 'max_iterations', 'Max iterations'),
+      contractNumber('WorkPrecisionRequest', 'seed', 'Seed')),
     actions());
   form.insertBefore(choiceMatrix('choices', 'Integrator, solver and differential', ROWS, DIFFERENTIALS_SHORT, DEFAULT_TICKS,
     describe, ['integrator', 'method', 'differential']), form.querySelector('.field[data-field="h"]'));
   const live = el('p', { class: 'live', role: 'status' }, 'Tick the choices to compare and press Run.');
   const wpBox = el('div', { class: 'chart', id: 'work-precision-chart' });
-  const energyBox = el('div', { class: 'chart', id: 'energy-chart' });
+  // One chart per invariant the catalog knows (energy-chart, vertical_momentum-chart), shown for the problems
+  // that report it.
+  const invariantBoxes = Object.fromEntries(entries('invariant').map((i) => [i.value,
+    el('div', { class: 'chart', id: `${i.value}-chart` })]));
   const wpHover = el('p', { class: 'hint', id: 'work-precision-hover', 'aria-live': 'polite' });
-  const energyFig = el('section', { class: 'energy', hidden: true },
-    el('h3', {}, 'Rigid body: energy error over time'), energyBox);
+  const noiseNote = el('p', { class: 'hint', id: 'work-precision-noise' });
+  // Per invariant: its chart and the sentence naming curves drawn over each other.
+  const coincideNotes = Object.fromEntries(entries('invariant').map((i) => [i.value,
+    el('p', { class: 'hint', id: `${i.value}-coincide` })]));
+  const invariantFigs = Object.fromEntries(entries('invariant').map((i) => [i.value,
+    el('section', { class: 'energy', hidden: true }, el('h3', {}, `${i.label}: error over time`),
+      el('p', { class: 'hint' }, i.description), invariantBoxes[i.value], coincideNotes[i.value])]));
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
-  const trajectory = runFrames('trajectory-frames', 'Rigid body: the trajectory as rotation frames', 'Time step',
-    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): y(t\u2096) bold, '
-    + 'earlier ones fainter, y(0) dashed.');
-  root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
-    el('p', { class: 'hint' }, 'One line per choice through its step sizes h (largest h at the left end); '
-      + 'x is the solver\u2019s own CPU time (cpu_seconds), y the global error at t_end. p is the fitted order '
-      + '(slope of log error against log h). Click a legend entry to hide or show its line.'),
-    wpBox, wpHover, energyFig, tableBox, trajectory.element));
-  const start = runner(form, live);
-
-  form.addEventListener('submit', async (e) => {
-    e.preventDefault();
+  const trajectory = runFrames('trajectory-frames', 'The trajectory as rotation frames', 'Time step',
+    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): the body axes '
+    + 'of each state\u2019s rotation (the top\u2019s R on SOxR), y(t\u2096) bold, earlier ones fainter, y(0) dashed.');
+  // The invariants the request's problem reports (none for a program g).
+  const invariantsOf = (common) => (common.g ? [] : entry('problem', common.problem).invariants ?? []);
+  // The work-precision request, then for a problem with invariants one integration per choice (their plots).
+  function requestsOf() {
     const choices = checkedValues(form, 'choices').map((v) => {
       const [integrator, method, differential] = v.split('|');
       return { integrator, method, differential };
     });
-    const common = { problem: value(form, 'problem'), n: value(form, 'n'), t_end: value(form, 't_end'),
+    if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
+    const common = { ...problemOf(form), n: value(form, 'n'), t_end: value(form, 't_end'),
       tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'), seed: value(form, 'seed') };
-    energyFig.hidden = true;
+    const h = wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
+    const energy = !invariantsOf(common).length ? [] : choices.map((choice) => ({ path: '/api/v1/integrate',
+      body: { ...common, ...choice, h: value(form, 'energy_h'), frames: FRAMES } }));
+    return [{ path: '/api/v1/work-precision', body: { ...common, choices, h } }, ...energy];
+  }
+  let last = null;  // { wp, runs } of the last run
+  const share = sharePanel(form, {
+    requests: requestsOf,
+    data: () => last && { name: 'work-precision', columns: POINT_COLUMNS,
+      rows: last.wp.series.flatMap((s) => s.points.map((p) => [s.choice.integrator, s.choice.method, s.choice.differential,
+        ...POINT_COLUMNS.slice(3).map((k) => p[k] ?? null)])),
+      json: { work_precision: last.wp, energy_runs: last.runs.map(({ request, result }) => ({ request, result })) } },
+  });
+  root.append(form, el('div', { class: 'output' }, live, el('h3', {}, 'Work precision'),
+    el('p', { class: 'hint' }, 'One line per choice through its step sizes h, each marker labelled with its h; '
+      + `x is the global error at t_end, y the solver\u2019s own CPU time (cpu_seconds), the median of ${REPEATS} runs `
+      + '(hover a marker for its range), as in the server\u2019s work-precision PNG. p is the fitted order (slope of log error against log h). Click a legend entry to hide '
+      + 'or show its line.'),
+    wpBox, wpHover, noiseNote, share.element, ...Object.values(invariantFigs), tableBox, trajectory.element));
+  const start = runner(form, live);
+
+  form.addEventListener('submit', async (e) => {
+    e.preventDefault();
+    Object.values(invariantFigs).forEach((fig) => { fig.hidden = true; });
+    noiseNote.textContent = '';
     tableBox.replaceChildren();
     trajectory.hide();
+    last = null;
+    share.refresh();
     await start(async (signal, progress) => {
-      if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
-      const h = wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
+      const [wpRequest, ...energyRequests] = requestsOf();
+      const { choices, h } = wpRequest.body;
       live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes\u2026`;
-      const wp = await postJSON('/api/v1/work-precision', { ...common, choices, h }, { signal });
+      // The same request REPEATS times: each point's CPU time is the median of its runs, with their range.
+      const repeats = [];
+      for (let k = 0; k < REPEATS; k += 1) {
+        repeats.push(await postJSON(wpRequest.path, wpRequest.body, { signal }));
+        live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes: run ${k + 1} of ${REPEATS} done\u2026`;
+      }
+      const wp = medianOf(repeats);
+      const timed = `work precision ${REPEATS} times in ${fmtSeconds(repeats.reduce((a, r) => a + r.seconds, 0))}`;
       workPrecisionChart(wpBox, wp.series.map((s) => ({ label: seriesLabel(s), points: s.points })), wpHover);
-      live.textContent = `Work precision done in ${fmtSeconds(wp.seconds)}.`;
-      if (common.problem !== 'rigid-body') return;
-      progress.max = choices.length;
+      noiseNote.textContent = noiseText(wp.series);
+      last = { wp, runs: [] };
+      if (!energyRequests.length) {
+        live.textContent = `Done: ${timed}.`;
+        return;
+      }
+      progress.max = energyRequests.length;
       const runs = [];
-      for (const [i, choice] of choices.entries()) {
+      for (const [i, { path, body: request }] of energyRequests.entries()) {
+        const choice = choices[i];
         live.textContent = `Integrating ${choiceLabel(choice)} (${i + 1} of ${choices.length})\u2026`;
-        const request = { ...common, ...choice, h: value(form, 'energy_h'), frames: FRAMES };
-        const result = await postJSON('/api/v1/integrate', request, { signal }).catch((err) => {
+        const result = await postJSON(path, request, { signal }).catch((err) => {
           if (err.field === 'h') err.field = 'energy_h';
           throw err;
         });
         runs.push({ choice, request, result });
         progress.value = i + 1;
       }
-      drawEnergy(energyBox, runs);
-      energyFig.hidden = false;
-      tableBox.replaceChildren(integrateTable(runs));
+      last.runs = runs;
+      const invariants = invariantsOf(energyRequests[0].body);
+      for (const name of invariants) {
+        coincideNotes[name].textContent = drawInvariant(invariantBoxes[name], runs, name);
+        invariantFigs[name].hidden = false;
+      }
+      tableBox.replaceChildren(integrateTable(runs, invariants));
       trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
-        { ...request, kind: 'integrate' })));
-      live.textContent = `Done: work precision in ${fmtSeconds(wp.seconds)}, ${runs.length} energy runs.`;
+        { ...request, kind: 'integrate' }, invariants)));
+      live.textContent = `Done: ${timed}, ${runs.length} invariant runs.`;
     });
+    share.refresh();
   });
+  return { share };
 }
+
+// One CSV row per point of the work-precision diagram: its choice, h, and what it cost and reached.
+const POINT_COLUMNS = ['integrator', 'method', 'differential', 'h', 'error', 'cpu_seconds', 'iterations'];
 
 // One run for the trajectory's stepper: the render request (the same frames as the integration, which ran with
 // FRAMES) and per slider position the step and time the server reports for that frame (frame_steps,
-// frame_times) and its energy error.
-function trajectoryRun(label, result, request) {
+// frame_times) and its invariants' errors.
+function trajectoryRun(label, result, request, invariants) {
   const steps = result.frame_steps;
   return { label, request, count: steps.length, describe(i) {
     const k = steps[i];
-    const energy = k ? result.steps[k - 1].energy : result.initial_energy;
-    return `step ${k}, t = ${Number(result.frame_times[i].toPrecision(6))}: E \u2212 E(0) = ${fmtExp(energy - result.initial_energy)}`;
+    const errors = invariants.map((name) => {
+      const value = k ? result.steps[k - 1][name] : result[`initial_${name}`];
+      const short = entry('invariant', name).short;
+      return `${short} \u2212 ${short}(0) = ${fmtExp(value - result[`initial_${name}`])}`;
+    });
+    return `step ${k}, t = ${Number(result.frame_times[i].toPrecision(6))}: ${errors.join(', ')}`;
   } };
 }
 
-// Energy relative to E(0), so that drift is visible whatever E's size; runs that stopped
-// early are padded with gaps.
-function drawEnergy(box, runs) {
-  const longest = runs.reduce((a, r) => (r.result.steps.length > a.length ? r.result.steps : a), []);
-  const times = longest.map((s) => s.t);
-  energyChart(box, times, runs.map(({ choice, result }) => {
-    const e0 = result.initial_energy;
-    return { label: choiceLabel(choice),
-      values: times.map((_, k) => (k < result.steps.length && e0 ? (result.steps[k].energy - e0) / e0 : null)) };
-  }));
+// The first repeat with each point's cpu_seconds replaced by the median of the repeats, and their ascending
+// list as cpu_runs (errors and iterations do not depend on the run).
+function medianOf(repeats) {
+  const [first] = repeats;
+  return { ...first, series: first.series.map((s, i) => ({ ...s, points: s.points.map((p, j) => {
+    const runs = repeats.map((r) => r.series[i].points[j].cpu_seconds).sort((a, b) => a - b);
+    return { ...p, cpu_seconds: median(runs), cpu_runs: runs };
+  }) })) };
 }
 
-function integrateTable(runs) {
-  const head = ['Choice', 'Status', 'Global error', 'Energy drift', '\u2016y\u1d40y \u2212 I\u2016', 'Solver CPU time'];
+// Which choices' CPU times are within the noise of each other (their ranges overlap) at the same h.
+function noiseText(series) {
+  const pairs = [];
+  for (let i = 0; i < series.length; i += 1) {
+    for (let j = i + 1; j < series.length; j += 1) {
+      const at = series[i].points.filter((p) => {
+        const q = series[j].points.find((x) => x.h === p.h);
+        return q?.cpu_runs && p.cpu_runs && withinNoise(p.cpu_runs, q.cpu_runs);
+      });
+      if (at.length) pairs.push(`${choiceLabel(series[i].choice)} and ${choiceLabel(series[j].choice)} at ` +
+        `${at.length} of ${series[i].points.length} step sizes`);
+    }
+  }
+  return pairs.length
+    ? `Within the noise (their ranges of ${REPEATS} CPU times overlap, so their order there is not a finding): ${pairs.join('; ')}.`
+    : `No two choices\u2019 ranges of ${REPEATS} CPU times overlap at the same h.`;
+}
+
+// An invariant relative to its value at t = 0, so that drift is visible whatever its size; runs that stopped
+// early are padded with gaps. Curves that coincide (one hides the other) say so in the legend; the returned
+// sentence names them.
+function drawInvariant(box, runs, name) {
+  const longest = runs.reduce((a, r) => (r.result.steps.length > a.length ? r.result.steps : a), []);
+  const times = longest.map((s) => s.t);
+  const curves = runs.map(({ choice, result }) => {
+    const i0 = result[`initial_${name}`];
+    const scale = i0 ? Math.abs(i0) : 1;
+    return { label: choiceLabel(choice),
+      values: times.map((_, k) => (k < result.steps.length ? (result.steps[k][name] - i0) / scale : null)) };
+  });
+  const same = curves.map((c, i) => curves.findIndex((d, j) => j < i && coincides(c.values, d.values)));
+  invariantChart(box, times, curves.map((c, i) => (same[i] < 0 ? c
+    : { ...c, label: `${c.label} (same curve as ${curves[same[i]].label})` })), entry('invariant', name).short);
+  const hidden = same.flatMap((j, i) => (j < 0 ? [] : [`${curves[i].label} coincides with ${curves[j].label}`]));
+  return hidden.length ? `${hidden.join('; ')}: drawn over each other (relative difference below ${COINCIDE.toExponential(0)}).` : '';
+}
+
+// Two curves coincide when every value differs by at most this, relative: one line covers the other.
+const COINCIDE = 1e-6;
+function coincides(a, b) {
+  return a.every((v, k) => (v === null || b[k] === null ? v === b[k]
+    : Math.abs(v - b[k]) <= COINCIDE * Math.max(Math.abs(v), Math.abs(b[k]))));
+}
+
+function integrateTable(runs, invariants) {
+  const head = ['Choice', 'Status', 'Global error', ...invariants.map((name) => `${entry('invariant', name).label} drift`),
+    '\u2016y\u1d40y \u2212 I\u2016', 'Solver CPU time'];
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, runs.map(({ choice, result: r }) => el('tr', {},
       el('th', { scope: 'row' }, choiceLabel(choice)), el('td', {}, statusBadge(r.status)),
-      el('td', {}, fmtExp(r.global_error)), el('td', {}, fmtExp(r.energy_drift)),
+      el('td', {}, fmtExp(r.global_error)), ...invariants.map((name) => el('td', {}, fmtExp(r[`${name}_drift`]))),
       el('td', {}, fmtExp(r.orthogonality_error)), el('td', {}, fmtSeconds(r.cpu_seconds))))));
 }

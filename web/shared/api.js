@@ -13,7 +13,10 @@ export class ApiError extends Error {
 
 function fromBody(status, body) {
   const e = body && body.error;
-  if (e && typeof e.message === 'string') return new ApiError(e.message, { status, code: e.code, field: e.field });
+  if (e && typeof e.message === 'string') {
+    const where = Number.isInteger(e.line) ? `line ${e.line}, column ${e.column}: ` : '';  // a program's fault
+    return new ApiError(where + e.message, { status, code: e.code, field: e.field });
+  }
   return new ApiError(`The server answered HTTP ${status}.`, { status });
 }
 
@@ -49,6 +52,12 @@ export async function postJSON(path, body, { signal } = {}) {
 export async function postImage(path, body, { signal } = {}) {
   const res = await post(path, body, 'image/png', signal);
   return URL.createObjectURL(await res.blob());
+}
+
+// The same picture as SVG text (format svg), for a paper.
+export async function postSvg(path, body, { signal } = {}) {
+  const res = await post(path, { ...body, format: 'svg' }, 'image/svg+xml', signal);
+  return res.text();
 }
 
 // Streams NDJSON: calls onRecord for every non-terminal line as it arrives and resolves to the terminal

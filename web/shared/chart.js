@@ -2,7 +2,8 @@
 // container's width, and records how many points and series it draws in data-points / data-series so
 // that the browser tests check what is actually plotted.
 import uPlot from '../vendor/uPlot.esm.js';
-import { SERIES_STYLES, fmtExp, fmtH, fmtSeconds } from './labels.js';
+import { SERIES_STYLES, fmtExp, fmtH, fmtSeconds, superscript } from './labels.js';
+import { spreadText } from './repeats.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.
 function logAxisValues(u, splits, axisIdx) {
@@ -99,6 +100,8 @@ export function residualChart(container, labels) {
       const xs = Array.from({ length: len }, (_, i) => i);
       plot.setData([xs, ...columns.map((c) => xs.map((i) => (i < c.length ? positive(c[i]) : null)))]);
       record(container, plot);
+      // The residuals as given, for the browser tests (the downloads must hold the same numbers).
+      (window.__lienewtonCharts ??= {})[container.id] = { columns: columns.map((c) => [...c]) };
     },
   };
 }
@@ -163,14 +166,15 @@ function nearest(u) {
   return best;
 }
 
-// Work-precision diagram (as in Hairer-Wanner or DiffEqDevTools): solver CPU seconds (x) against global error
-// (y), both log; one line per choice joining its step sizes in order of h, with its style's colour, dash and
-// marker, and its fitted order p in the legend. Clicking a legend entry hides or shows that series. Hovering a
+// Work-precision diagram as DiffEqDevTools and the server's render/work-precision draw it: global error (x)
+// against solver CPU seconds (y), both log; one line per choice joining its step sizes in order of h, with its
+// style's colour, dash and marker, each marker labelled with its h (k of h = 2^k), and its fitted order p in the
+// legend. Clicking a legend entry hides or shows that series. Hovering a
 // marker shows its h, CPU time, error and iterations in `hover`. uPlot's mode 2: every series has its own xs.
 export function workPrecisionChart(container, runs, hover) {
   const tables = runs.map((r) => {
     const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.error)).sort((a, b) => b.h - a.h);
-    return { pts, xy: [pts.map((p) => p.cpu_seconds), pts.map((p) => p.error)] };
+    return { pts, xy: [pts.map((p) => p.error), pts.map((p) => p.cpu_seconds)] };
   });
   const all = (k) => tables.flatMap((t) => t.xy[k]);
   const xr = decades(null, Math.min(...all(0)), Math.max(...all(0)));
@@ -186,7 +190,8 @@ export function workPrecisionChart(container, runs, hover) {
     if (!hit) { hover.textContent = 'Hover a marker to read its h, CPU time, error and iterations.'; return; }
     const [i, k] = hit;
     const p = tables[i - 1].pts[k];
-    hover.textContent = `${runs[i - 1].label}: h = ${fmtH(p.h)}, solver CPU time ${fmtSeconds(p.cpu_seconds)}, ` +
+    const cpu = p.cpu_runs ? `median ${spreadText(p.cpu_runs)} of ${p.cpu_runs.length} runs` : fmtSeconds(p.cpu_seconds);
+    hover.textContent = `${runs[i - 1].label}: h = ${fmtH(p.h)}, solver CPU time ${cpu}, ` +
       `global error ${fmtExp(p.error)}, ${p.iterations} iterations`;
     hover.dataset.h = String(p.h);
   };
@@ -194,20 +199,20 @@ export function workPrecisionChart(container, runs, hover) {
     mode: 2,
     series,
     scales: { x: { time: false, distr: 3, log: 10, range: () => xr }, y: { distr: 3, log: 10, range: () => yr } },
-    axes: [logAxis('solver CPU time [s]', { size: 50 }), logAxis('global error at t_end')],
+    axes: [logAxis('global error at t_end', { size: 50 }), logAxis('solver CPU time [s]')],
     legend: { live: false },
     cursor: { drag: { x: false, y: false }, points: { show: false } },
-    hooks: { draw: [drawMarkers], setCursor: [show] },
+    hooks: { draw: [drawMarkers, (u) => drawHLabels(u, tables)], setCursor: [show] },
     height: 380,
   };
   const plot = mount(container, opts, [null, ...tables.map((t) => t.xy)]);
   container.dataset.points = String(tables.reduce((a, t) => a + t.pts.length, 0));
   container.dataset.series = String(runs.length);
   show(plot);
-  // What is plotted, for the browser tests (as data-points / data-series are): xs per series in drawing
+  // What is plotted, for the browser tests (as data-points / data-series are): CPU times per series in drawing
   // order, each series' style, and the page position of the first marker.
   (window.__lienewtonCharts ??= {})[container.id] = {
-    xs: tables.map((t) => t.xy[0]),
+    cpu: tables.map((t) => t.xy[1]),
     styles: runs.map((_, i) => ({ color: seriesStyle(i).color, marker: seriesStyle(i).marker })),
     firstMarker() {
       const box = plot.over.getBoundingClientRect();
@@ -217,15 +222,47 @@ export function workPrecisionChart(container, runs, hover) {
   return plot;
 }
 
-// Rigid-body energy error over time, |E(t) - E(0)| / E(0) on a log axis so that drifts of very different
-// sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same step times.
-export function energyChart(container, times, runs) {
+// Each shown marker's h (as 2^k where it is a power of two) just above it, in its series' colour on a halo of the
+// chart's background; a label that would cover one already drawn is left out (coinciding series share theirs).
+function drawHLabels(u, tables) {
+  const c = u.ctx;
+  const px = devicePixelRatio;
+  c.save();
+  c.font = `${11 * px}px system-ui, sans-serif`;
+  c.textAlign = 'center';
+  c.textBaseline = 'bottom';
+  c.lineWidth = 3 * px;
+  c.strokeStyle = getComputedStyle(u.root).getPropertyValue('--card').trim() || '#fff';
+  const drawn = [];
+  tables.forEach((t, i) => {
+    if (!u.series[i + 1].show) return;
+    c.fillStyle = u.series[i + 1]._color;
+    t.pts.forEach((p, k) => {
+      const kk = Math.log2(p.h);
+      const text = Number.isInteger(kk) ? `2${superscript(kk)}` : String(p.h);
+      const x = u.valToPos(t.xy[0][k], 'x', true);
+      const y = u.valToPos(t.xy[1][k], 'y', true) - 8 * px;
+      const w = c.measureText(text).width;
+      const box = [x - w / 2, y - 12 * px, x + w / 2, y];
+      if (drawn.some((d) => box[0] < d[2] && d[0] < box[2] && box[1] < d[3] && d[1] < box[3])) return;
+      drawn.push(box);
+      c.strokeText(text, x, y);
+      c.fillText(text, x, y);
+    });
+  });
+  c.restore();
+}
+
+// An invariant's error over time (energy, vertical momentum: name), |I(t) - I(0)| / |I(0)| on a log axis so that
+// drifts of very different sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same
+// step times.
+export function invariantChart(container, times, runs, name) {
   // The work-precision chart's styles (same choice, same colour and dash): coinciding runs stay visible.
   const series = [{ label: 't', class: 'x-series' }].concat(runs.map((r, i) => styledLine(r.label, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
-    axes: [{ label: 'time t' }, logAxis('|E(t) \u2212 E(0)| / E(0)')],
+    axes: [{ label: 'time t' }, logAxis(`${name}: |I(t) \u2212 I(0)| / |I(0)|`)],
     legend: { live: true },
   };
   const plot = mount(container, opts, [times, ...runs.map((r) => r.values.map((v) => positive(Math.abs(v))))]);

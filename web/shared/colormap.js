@@ -1,5 +1,6 @@
 // The heatmap colours, the same as the server's renderer (render/colormap.cpp, heatmap_scene.cpp) so that
-// the interactive grid and the PNG read alike: viridis for a converged cell's metric, one flat colour per
+// the interactive grid and the PNG read alike (the grid's range is fixed before its sweep, the PNG's is its
+// cells' range; each has its colour bar): viridis for a converged cell's metric, one flat colour per
 // failure class, grey where a converged cell has no value for the metric (e.g. no rate). All of them come
 // from the server's catalog.
 import { catalog } from './catalog.js';
@@ -34,14 +35,14 @@ export function isOutlier(cell, metric) {
   return metric === 'rate' && v !== null && (v < RATE_RANGE.lo || v > RATE_RANGE.hi);
 }
 
-// Range of the metric over the converged cells; a single value is widened by one either side.
-export function metricScale(cells, metric) {
+// The scale fixed before a sweep starts, so that no cell changes colour while it runs: from the smallest value
+// its probe met (the cells of a few of its rows) to the largest the request allows (max_iterations iterations,
+// a residual of tol); rates on their fixed 0..3.
+export function fixedScale(metric, request, probeCells) {
   if (metric === 'rate') return RATE_RANGE;
-  const values = cells.map((c) => metricValue(c, metric)).filter((v) => v !== null);
-  if (!values.length) return { lo: 0, hi: 1 };
-  const lo = Math.min(...values);
-  const hi = Math.max(...values);
-  return lo === hi ? { lo: lo - 1, hi: hi + 1 } : { lo, hi };
+  const hi = metric === 'iterations' ? request.max_iterations : Math.log10(Math.max(request.tol, 1e-18));
+  const seen = probeCells.map((c) => metricValue(c, metric)).filter((v) => v !== null && v < hi);
+  return { lo: seen.length ? Math.min(...seen) : hi - 1, hi };
 }
 
 export function cellColor(cell, metric, scale, statusColors) {

@@ -101,6 +101,12 @@ export function range(name, legend, [loName, lo], [hiName, hi], hint) {
     el('p', { class: 'field-error', 'aria-live': 'polite' }));
 }
 
+// Fields most runs leave alone, folded under a summary so that the first screen holds the problem, the method
+// and Run. A fold opens by itself when a field in it gets an error or a value from the page's URL.
+export function folded(summary, ...fields) {
+  return el('details', { class: 'folded', dataset: { fold: summary } }, el('summary', {}, summary), fields.flat(Infinity));
+}
+
 export function actions() {
   return el('div', { class: 'actions' },
     el('button', { type: 'submit', class: 'primary', dataset: { role: 'run' } }, 'Run'),

@@ -50,6 +50,8 @@ export function showError(form, err) {
   const own = field && form.querySelector(`input[name="${CSS.escape(field)}"]`);
   const wrapper = own?.closest('.field') ?? (name && form.querySelector(`.field[data-field="${name}"]`));
   if (wrapper) {
+    const fold = wrapper.closest('details.folded');
+    if (fold) fold.open = true;
     wrapper.querySelector('.field-error').textContent = err.message;
     const input = own ?? wrapper.querySelector('input[name], select[name]');
     if (input) {
@@ -87,7 +89,8 @@ export function runner(form, live) {
     progress.hidden = false;
     progress.removeAttribute('value');
     form.setAttribute('aria-busy', 'true');
-    // On a phone the output sits below the long form: bring it into view so progress is visible.
+    // Once a run starts, a phone shows the output above the form (style.css, .ran): bring it into view.
+    form.parentElement.classList.add('ran');
     if (matchMedia('(max-width: 820px)').matches) form.nextElementSibling?.scrollIntoView({ block: 'start' });
     try {
       await task(mine.signal, progress);

@@ -10,8 +10,8 @@ export const DIFFERENTIALS_SHORT = choices('differential', 'short');
 export const INTEGRATORS = choices('integrator');
 export const METRICS = choices('heatmap_metric');
 export const GLOBALIZATIONS = choices('globalization');
-// The sweep's boolean continuation as a select: the paper's direct solve at h, or the path h0 < h1 < ... < h.
-export const CONTINUATION = [['false', 'Off (solve at h directly)'], ['true', 'On (h\u2080 \u2264 1/16, doubling to h)']];
+// The boolean continuation as a select: the paper's direct solve at h, or following z's branch of roots from h = 0.
+export const CONTINUATION = [['false', 'Off (solve at h directly)'], ['true', 'On (follow z\u2019s root from h = 0)']];
 
 // Per status: the colour of its badge and heatmap cells (the renderer's failure colours, outside viridis) and
 // a one-line description.

@@ -1,18 +1,68 @@
 // The fields every solve-like request has, built and read the same way in every panel.
-import { contractNumber, number, select, spec, stepSize } from './fields.js';
+import { el } from './dom.js';
+import { contractNumber, field, folded, number, select, spec, stepSize } from './fields.js';
 import { value } from './form.js';
+import { entry } from './catalog.js';
 import { PROBLEMS } from './labels.js';
 
 // n, tol, max_iterations and seed as the server defaults them; the rest are the dashboard's choice.
 export const DEFAULTS = { problem: 'paper-linear', h: 0.5, method: 'newton-group', differential: 'exact',
   ...Object.fromEntries(['n', 'tol', 'max_iterations', 'seed'].map((name) => [name, spec('SolveRequest', name).default])) };
 
+// The built-ins as a user writes them (MATLAB notation, the paper's section 5), with their parameters.
+export const PROGRAMS = {
+  'paper-linear': ['g = diag(diag(y,1),1) - diag(diag(y,1),-1)', ''],
+  'paper-sine': ["u = sin(y)*(2*y - 5*y^2);\ng = u - u'", ''],
+  'rigid-body': ["w = J \\ (y' * m);\ng = [0 -w(3) w(2); w(3) 0 -w(1); -w(2) w(1) 0]",
+    '{"J": [[1,0,0],[0,2,0],[0,0,3]], "m": [[0.6],[0.8],[0.5]]}'],
+};
+
+// "Your g(y)": a program sent as g instead of the problem, its parameters as a JSON object; the button fills
+// the editor with the chosen problem written as a program. Like every field, both travel in the page's URL.
+export function programFields() {
+  const text = (name, rows) => el('textarea', { name, rows, spellcheck: 'false', autocomplete: 'off', class: 'code' });
+  const g = text('g', 3);
+  const parameters = text('parameters', 2);
+  const fillButton = el('button', { type: 'button' }, 'Edit the problem as a program');
+  fillButton.addEventListener('click', () => {
+    const problem = fillButton.form.elements.namedItem('problem').value;
+    [g.value, parameters.value] = PROGRAMS[problem] ?? ['', ''];
+    // As if typed: the page's URL keeps the program (shared/share.js).
+    g.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  return folded('Your own g(y)',
+    field('g', 'Your g(y) in MATLAB notation (empty: the built-in above)', g,
+      "MATLAB notation over y and t (the time when integrating, 0 otherwise), e.g. u = sin(y)*(2*y - 5*y^2); g = u - u'. Errors name the line and column"),
+    fillButton,
+    field('parameters', 'Parameters of g (JSON object)', parameters, 'Named numbers and matrices, e.g. {"J": [[1,0,0],[0,2,0],[0,0,3]]}'));
+}
+
 export function problemFields(d = DEFAULTS) {
   return [
     select('problem', 'Problem', PROBLEMS, d.problem),
     number('n', 'Dimension N (SO(N))', d.n, 'rigid-body needs N = 3'),
     stepSize(d.h),
+    programFields(),
   ];
+}
+
+// The request's field: {problem} (with its group when the server's catalog names one: heavy-top on SOxR), or
+// {g, parameters} when the form has a program. Parameters that are not JSON are sent as typed, so the server
+// names the field.
+export function problemOf(form) {
+  const g = form.elements.namedItem('g')?.value.trim();
+  if (!g) {
+    const problem = value(form, 'problem');
+    const { group } = entry('problem', problem);
+    return group ? { problem, group } : { problem };
+  }
+  const text = form.elements.namedItem('parameters')?.value.trim();
+  if (!text) return { g };
+  try {
+    return { g, parameters: JSON.parse(text) };
+  } catch {
+    return { g, parameters: text };
+  }
 }
 
 export function limitFields(d = DEFAULTS) {
@@ -23,9 +73,16 @@ export function limitFields(d = DEFAULTS) {
   ];
 }
 
+// A sent request's field as form values, for opening one of its runs in another panel: the problem, or the
+// program and its parameters.
+export function fieldValues(request) {
+  return request.g ? { g: request.g, parameters: request.parameters ? JSON.stringify(request.parameters) : '' }
+    : { problem: request.problem, g: '', parameters: '' };
+}
+
 export function readCommon(form) {
-  const out = {};
-  for (const name of ['problem', 'n', 'h', 'tol', 'max_iterations', 'seed']) out[name] = value(form, name);
+  const out = problemOf(form);
+  for (const name of ['n', 'h', 'tol', 'max_iterations', 'seed']) out[name] = value(form, name);
   return out;
 }
 

@@ -1,0 +1,345 @@
+#pragma once
+// The coupled stage system of an implicit Runge-Kutta-Munthe-Kaas step (Munthe-Kaas, "High order Runge-Kutta
+// methods on manifolds", Appl. Numer. Math. 29 (1999)) for y' = y g(t, y) from y_k at t_k, step h, and an
+// s-stage tableau (a, b, c) (core/rkmk_tableau.hpp):
+//   F_i(K) = K_i - dexpinv~_{Theta_i}(w_i) = 0,   w_i = g(t_k + c_i h, Y_i),  Y_i = y_k exp(Theta_i),
+//   Theta_i = h sum_j a_ij K_j,                   y_k+1 = y_k exp(h sum_j b_j K_j),
+// dexpinv~ the series (3.9) truncated after ad^q (q: the tableau's dexpinv_degree). The unknowns are the s stages
+// K_i in the algebra's coordinates, stacked: the section 6 remark's "general RK methods", solved as one system in
+// the algebra (the form of Version 2, (3.20)). Its Jacobian is dF_i/dK_j = delta_ij I - h a_ij M_i with
+//   M_i = d/dTheta (dexpinv~_Theta(w_i)) + dexpinv~_{Theta_i} dg_{Y_i} dexp_{Theta_i}           (cf. (3.22)).
+// The request's differential picks the Newton matrix:
+//   exact              that Jacobian at every iterate: Newton on the truncated system, quadratic;
+//   dexpinv-1          frozen per step at the first iterate, with dexpinv ~ I + ad/2 (3.11), dexp ~ I - ad/2 (3.17);
+//   dexpinv-0          frozen per step: I - h A (x) dg_{y_k}, dexpinv ~ dexp ~ I (3.10)/(3.16), the classical
+//                      simplified Newton;
+//   finite-difference  forward differences of F at every iterate (3.19);
+// and the fixed point (method fixed-point) iterates K <- dexpinv~_{Theta_i}(w_i). Newton Version 1 and 2 are the
+// same iteration here: the system already lives in the algebra.
+//
+// Which root: at h = 0 the system's root is K_i = g(t_k, y_k) for every i, and the step needs the root continued
+// from it. continued_stages() accepts the method's solve from the caller's start when its iterates contract
+// (kMaxContraction; the fixed point's kFixedPointContraction) and its Theta lies within acceptance_radius of the
+// branch's tangent prediction Theta_i = c_i h g(t_k, y_k) (the tests continuation.hpp applies to a stage of
+// (1.1)); otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
+// predictor; exact Newton corrector with the same two tests; step controlled as continuation.hpp's), and the
+// method's solve at h must stay at the branch's root. docs/integrators.md.
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "continuation.hpp"
+#include "core/cancellation.hpp"
+#include "core/groups/bernoulli.hpp"
+#include "core/problems.hpp"
+#include "core/rkmk_tableau.hpp"
+#include "core/solver_options.hpp"
+#include "iteration_monitor.hpp"
+
+namespace lienewton {
+
+struct StageSolution {
+  Eigen::VectorXd k;                // the stacked stages K_1 .. K_s
+  Status status = Status::max_iterations;
+  int iterations = 0;               // of every solve it took (continuation's correctors included)
+  std::vector<double> residuals;    // h ||F(K_n)||, n = 0, 1, ..., of the last solve
+  bool continued = false;           // the root continued from h = 0
+  std::string reason;
+  double residual() const { return residuals.empty() ? 0.0 : residuals.back(); }
+};
+
+template <LieGroup G>
+class RkmkStages {
+ public:
+  using Element = typename G::Element;
+  using Vector = typename G::Vector;
+
+  struct Evaluation {
+    Eigen::VectorXd f;  // F(K), stacked
+    std::vector<Vector> theta, w;
+    std::vector<Element> y;
+  };
+
+  RkmkStages(const G& group, VectorField<G>& field, const RkmkTableau& tab, Element y, double t, double h)
+      : group_(group), field_(&field), tab_(tab), y_(std::move(y)), t_(t), h_(h), q_(group.dim()) {}
+
+  // The same system at another step size (continuation in h).
+  RkmkStages at_step(double h) const {
+    RkmkStages s = *this;
+    s.h_ = h;
+    return s;
+  }
+
+  int size() const { return tab_.stages * q_; }
+  double h() const { return h_; }
+  Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
+  Vector theta(const Eigen::VectorXd& k, int i) const {
+    Vector th = zero_vector(group_);
+    for (int j = 0; j < tab_.stages; ++j) th += (h_ * tab_.a[i][j]) * stage(k, j);
+    return th;
+  }
+  Eigen::VectorXd thetas(const Eigen::VectorXd& k) const {
+    Eigen::VectorXd out(size());
+    for (int i = 0; i < tab_.stages; ++i) out.segment(i * q_, q_) = Eigen::VectorXd(theta(k, i));
+    return out;
+  }
+  // g(t_k, y_k): every stage's value at h = 0.
+  Vector g_at_start() const {
+    field_->set_time(t_);
+    return field_->g(y_);
+  }
+  // Every stage K_i = g, stacked: with g = g(t_k, y_k) the root at h = 0, and the tangent's prediction.
+  Eigen::VectorXd constant(const Vector& g) const { return along(g, zero_vector(group_)); }
+  // Stages K_i = g + c_i h slope, stacked.
+  Eigen::VectorXd along(const Vector& g, const Vector& slope) const {
+    Eigen::VectorXd k(size());
+    for (int i = 0; i < tab_.stages; ++i) k.segment(i * q_, q_) = Eigen::VectorXd(g + (tab_.c(i) * h_) * slope);
+    return k;
+  }
+  // dK/dh at h = 0: differentiating F(K, h) = 0 there gives dK_i/dh = c_i dg_{y_k}(g(t_k, y_k)).
+  Eigen::VectorXd slope_at_zero() const {
+    field_->set_time(t_);
+    const Vector dk = field_->dg(y_, field_->g(y_));
+    Eigen::VectorXd slope(size());
+    for (int i = 0; i < tab_.stages; ++i) slope.segment(i * q_, q_) = Eigen::VectorXd(tab_.c(i) * dk);
+    return slope;
+  }
+  // y_k+1 = y_k exp(h sum_j b_j K_j).
+  Element next(const Eigen::VectorXd& k) const {
+    Vector u = zero_vector(group_);
+    for (int j = 0; j < tab_.stages; ++j) u += (h_ * tab_.b[j]) * stage(k, j);
+    return group_.times_exp(y_, u);
+  }
+
+  Evaluation evaluate(const Eigen::VectorXd& k) const {
+    Evaluation e;
+    e.f.resize(size());
+    for (int i = 0; i < tab_.stages; ++i) {
+      e.theta.push_back(theta(k, i));
+      e.y.push_back(group_.times_exp(y_, e.theta[i]));
+      field_->set_time(t_ + tab_.c(i) * h_);
+      e.w.push_back(field_->g(e.y[i]));
+      e.f.segment(i * q_, q_) = Eigen::VectorXd(stage(k, i) - truncated_dexpinv(e.theta[i], e.w[i]));
+    }
+    return e;
+  }
+
+  // dexpinv~_theta(w) = sum_{k <= q} beta_k ad_theta^k(w): beta_0 = 1, beta_1 = 1/2, beta_2p = B_2p / (2p)! (3.9).
+  Vector truncated_dexpinv(const Vector& theta, const Vector& w) const {
+    Vector x = w, sum = w;
+    for (int k = 1; k <= tab_.dexpinv_degree; ++k) {
+      x = group_.bracket(theta, x);
+      if (const double beta = coefficient(k); beta != 0.0) sum += beta * x;
+    }
+    return sum;
+  }
+
+  // The Newton matrix of the differential d at k (see the file comment).
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& k, const Evaluation& e, Differential d) const {
+    if (d == Differential::finite_difference) {
+      Eigen::MatrixXd m(size(), size());
+      const double step = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, k.norm());
+      for (int j = 0; j < size(); ++j) {
+        throw_if_cancelled();
+        Eigen::VectorXd kj = k;
+        kj[j] += step;
+        m.col(j) = (evaluate(kj).f - e.f) / step;
+      }
+      return m;
+    }
+    std::vector<Eigen::MatrixXd> stage_m;
+    if (d == Differential::dexpinv_0) {
+      field_->set_time(t_);
+      stage_m.assign(static_cast<std::size_t>(tab_.stages), Eigen::MatrixXd(field_->dg_matrix(group_, y_)));
+    } else {
+      for (int i = 0; i < tab_.stages; ++i) {
+        field_->set_time(t_ + tab_.c(i) * h_);
+        stage_m.push_back(d == Differential::dexpinv_1 ? first_order_m(e, i) : exact_m(e, i));
+      }
+    }
+    Eigen::MatrixXd m = Eigen::MatrixXd::Identity(size(), size());
+    for (int i = 0; i < tab_.stages; ++i)
+      for (int j = 0; j < tab_.stages; ++j)
+        m.block(i * q_, j * q_, q_, q_) -= (h_ * tab_.a[i][j]) * stage_m[static_cast<std::size_t>(i)];
+    return m;
+  }
+
+  // The request's method from k: Newton (the Jacobian of d, frozen per solve for dexpinv-0/1) or the fixed point.
+  // Stops when h ||F|| <= max(tol, the rounding floor), and as soon as a step fails to contract.
+  StageSolution solve(Eigen::VectorXd k, Method method, Differential d, const SolverOptions& opt) const {
+    StageSolution out;
+    const bool newton = method != Method::fixed_point;
+    const bool frozen = d == Differential::dexpinv_0 || d == Differential::dexpinv_1;
+    const double contraction = newton ? kMaxContraction : kFixedPointContraction;
+    const double kappa = conditioning();
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    double previous = std::numeric_limits<double>::infinity();
+    for (int n = 0;; ++n) {
+      throw_if_cancelled();
+      const Evaluation e = evaluate(k);
+      const double r = h_ * e.f.norm();
+      out.residuals.push_back(r);
+      if (!std::isfinite(r)) {
+        out.status = Status::non_finite;
+        out.reason = "the stage residual is not finite";
+        break;
+      }
+      if (r <= std::max(opt.tol, floor(e, kappa))) {
+        out.status = Status::converged;
+        out.reason = "h ||F(K)|| = " + format_number(r) + " after " + std::to_string(n) + " iterations";
+        break;
+      }
+      if (n == opt.max_iterations) {
+        out.status = Status::max_iterations;
+        out.reason = "h ||F(K)|| = " + format_number(r) + " after " + std::to_string(n) + " iterations";
+        break;
+      }
+      Eigen::VectorXd dk = -e.f;  // the fixed point: K_i <- dexpinv~_{Theta_i}(w_i)
+      if (newton) {
+        if (!frozen || n == 0) {
+          lu.compute(jacobian(k, e, d));
+          if (!detail::well_conditioned(lu)) {
+            out.status = Status::singular_differential;
+            out.reason = "the stage system's Newton matrix is singular";
+            break;
+          }
+        }
+        dk = lu.solve(-e.f);
+      }
+      const double step = h_ * dk.norm();
+      if (!std::isfinite(step) || (step > kNegligibleStep && step > contraction * previous)) {
+        out.status = Status::diverged;
+        out.reason = "iteration " + std::to_string(n + 1) + " did not contract (h ||dK|| = " + format_number(step) +
+                     " after " + format_number(previous) + ")";
+        break;
+      }
+      previous = step;
+      k += dk;
+    }
+    out.iterations = static_cast<int>(out.residuals.size()) - 1;
+    out.k = std::move(k);
+    return out;
+  }
+
+ private:
+  static double coefficient(int k) {
+    if (k == 1) return 0.5;
+    return k % 2 == 0 ? bernoulli_over_factorial(k / 2) : 0.0;
+  }
+
+  // M_i of the exact Jacobian: d/dTheta of sum beta_k ad_Theta^k(w) is sum beta_k sum_m ad^m ad_delta ad^(k-1-m) w,
+  // and ad_delta x = -ad_x delta.
+  Eigen::MatrixXd exact_m(const Evaluation& e, int i) const {
+    const Vector& th = e.theta[static_cast<std::size_t>(i)];
+    const Vector& w = e.w[static_cast<std::size_t>(i)];
+    const Eigen::MatrixXd ad = Eigen::MatrixXd(group_.ad_matrix(th));
+    const int q = tab_.dexpinv_degree;
+    std::vector<Eigen::MatrixXd> ad_pow{Eigen::MatrixXd::Identity(q_, q_)};
+    std::vector<Vector> ad_w{w};  // ad^j w
+    for (int j = 1; j <= q; ++j) {
+      ad_pow.push_back(ad * ad_pow.back());
+      ad_w.push_back(group_.bracket(th, ad_w.back()));
+    }
+    Eigen::MatrixXd op = Eigen::MatrixXd::Identity(q_, q_), d_theta = Eigen::MatrixXd::Zero(q_, q_);
+    for (int k = 1; k <= q; ++k) {
+      const double beta = coefficient(k);
+      if (beta == 0.0) continue;
+      op += beta * ad_pow[static_cast<std::size_t>(k)];
+      for (int m = 0; m < k; ++m)
+        d_theta -= beta * ad_pow[static_cast<std::size_t>(m)] *
+                   Eigen::MatrixXd(group_.ad_matrix(ad_w[static_cast<std::size_t>(k - 1 - m)]));
+    }
+    const Eigen::MatrixXd dg = Eigen::MatrixXd(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
+    return d_theta + op * dg * Eigen::MatrixXd(group_.dexp_matrix(group_.spectral(th)));
+  }
+
+  // M_i with dexpinv ~ I + ad/2 (3.11) and dexp ~ I - ad/2 (3.17): -ad_w/2 + (I + ad/2) dg (I - ad/2).
+  Eigen::MatrixXd first_order_m(const Evaluation& e, int i) const {
+    const Eigen::MatrixXd half_ad = 0.5 * Eigen::MatrixXd(group_.ad_matrix(e.theta[static_cast<std::size_t>(i)]));
+    const Eigen::MatrixXd id = Eigen::MatrixXd::Identity(q_, q_);
+    const Eigen::MatrixXd dg = Eigen::MatrixXd(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
+    return -0.5 * Eigen::MatrixXd(group_.ad_matrix(e.w[static_cast<std::size_t>(i)])) + (id + half_ad) * dg * (id - half_ad);
+  }
+
+  // h ||dg_{y_k}||_F: rounding eps in Y_i is amplified to ~ eps h ||dg|| in h F.
+  double conditioning() const {
+    field_->set_time(t_);
+    return h_ * Eigen::MatrixXd(field_->dg_matrix(group_, y_)).norm();
+  }
+
+  // The rounding floor of h ||F||: 64 eps sqrt(sq) (1 + ||Theta|| + h ||w||) (1 + kappa).
+  double floor(const Evaluation& e, double kappa) const {
+    double scale = 1.0;
+    for (std::size_t i = 0; i < e.theta.size(); ++i) scale += e.theta[i].norm() + h_ * e.w[i].norm();
+    return 64.0 * std::numeric_limits<double>::epsilon() * std::sqrt(double(size())) * scale * (1.0 + kappa);
+  }
+
+  G group_;
+  VectorField<G>* field_;
+  RkmkTableau tab_;
+  Element y_;
+  double t_, h_;
+  int q_;
+};
+
+// The stages continued from h = 0 (see the file comment): the method's solve from start, checked; else the branch
+// followed from h = 0 and the method's solve at h from its root.
+template <LieGroup G>
+StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& start, Method method,
+                               Differential d, const SolverOptions& opt) {
+  constexpr int kMaxPathSteps = 400;
+  constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
+  const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
+  const Eigen::VectorXd tangent_theta = sys.thetas(root0);  // Theta_i = c_i h g(y_k): the tangent's prediction
+  StageSolution first = sys.solve(start, method, d, opt);
+  if (first.status == Status::converged &&
+      (sys.thetas(first.k) - tangent_theta).norm() <= acceptance_radius(tangent_theta.norm())) {
+    first.continued = true;
+    return first;
+  }
+  int spent = first.iterations;
+  SolverOptions corrector = opt;  // the path's points need not be solved to the request's tol, only its end
+  corrector.max_iterations = kMaxCorrectorIterations;
+  corrector.tol = std::max(opt.tol, kPathTolerance);
+  double tau = 0.0, dtau = sys.h();
+  Eigen::VectorXd k = root0, slope = sys.slope_at_zero();
+  for (int p = 0; p < kMaxPathSteps && tau < sys.h(); ++p) {
+    throw_if_cancelled();
+    const double next = std::min(sys.h(), tau + dtau);
+    const RkmkStages<G> at = sys.at_step(next);
+    const Eigen::VectorXd pred = k + (next - tau) * slope;
+    const StageSolution c = at.solve(pred, Method::newton_group, Differential::exact, corrector);
+    spent += c.iterations;
+    const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
+    if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move)) {
+      slope = (c.k - k) / (next - tau);
+      k = c.k;
+      tau = next;
+      dtau *= c.iterations <= 2 ? 2.0 : c.iterations <= 4 ? 1.0 : 0.5;  // as continuation.hpp's path
+    } else if ((dtau /= 2) < 1e-10 * sys.h()) {
+      break;
+    }
+  }
+  if (tau < sys.h()) {
+    first.iterations = spent;
+    first.reason = "the stages' branch from h = 0 could not be followed past h = " + format_number(tau) +
+                   " (a fold, or too stiff a turn); the method from its start: " + first.reason;
+    if (first.status == Status::converged) first.status = Status::fold;
+    return first;
+  }
+  StageSolution last = sys.solve(k, method, d, opt);
+  last.iterations += spent;
+  const Eigen::VectorXd theta = sys.thetas(k);
+  last.continued = last.status == Status::converged &&
+                   (sys.thetas(last.k) - theta).norm() <= 1e-6 * (1.0 + theta.norm());
+  if (last.status == Status::converged && !last.continued) {
+    last.status = Status::fold;
+    last.reason = "the method left the stages' root continued from h = 0: " + last.reason;
+  }
+  return last;
+}
+
+}  // namespace lienewton

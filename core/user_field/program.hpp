@@ -1,0 +1,83 @@
+#pragma once
+// A user's vector field g(y), written in a small, safe subset of MATLAB/Octave matrix syntax (the notation of the
+// paper's section 5), compiled once for one n into a flat list of Eigen operations. Every value is a matrix whose
+// size is known at compile time; values that depend on neither y nor t are folded into constants, values that
+// depend on t alone are recomputed only when t changes, and equal instructions are shared. Evaluation is forward-mode at matrix level: each value carries its tangent, so
+// dg_y(U) = d/dt g(y exp(tU)) at t = 0 is exact (the product rule per operation), not a difference quotient.
+// No loops, no user functions, no I/O: a program's cost is bounded before it ever runs.
+#include <Eigen/Dense>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lienewton::user_field {
+
+// Named numbers and matrices a program reads (e.g. an inertia matrix J).
+using Parameters = std::map<std::string, Eigen::MatrixXd>;
+
+// The bounds on a program, so a hostile one answers 422 before it runs.
+inline constexpr std::size_t kMaxSourceBytes = 64 * 1024;
+inline constexpr int kMaxNodes = 20000;          // syntax tree nodes
+inline constexpr int kMaxNesting = 128;  // levels of parentheses, brackets and unary operators (two per parenthesis)
+inline constexpr double kMaxElements = 1e6;      // entries of one value
+inline constexpr double kMaxTotalElements = 4e6; // entries of all values together (and as many tangents)
+inline constexpr double kMaxCost = 2e9;          // estimated flops of one evaluation of g and its tangent
+inline constexpr std::size_t kMaxParameters = 64;
+
+class Program;
+
+// Compiles `source` for y of size n x n; the time t is an input of each evaluation. Throws RequestError
+// (unprocessable, field "g", with the line and column of the fault) on a parse, size or limit error.
+std::shared_ptr<const Program> compile(std::string_view source, int n, const Parameters& parameters);
+
+// Checks a parameter's name and value (a MATLAB identifier, finite entries, within the size limits); throws
+// RequestError naming parameters.<name>.
+void check_parameter(const std::string& name, const Eigen::MatrixXd& value);
+
+struct Instruction;
+
+class Program {
+ public:
+  ~Program();
+  using In = Eigen::Ref<const Eigen::MatrixXd>;
+  int n() const { return n_; }
+  // g(t, y). Polls the current cancellation token (throws Cancelled).
+  void eval(const In& y, double t, Eigen::MatrixXd& g) const;
+  // g(t, y) and its derivative along dy: dg = d/ds g(t, y + s dy) at s = 0.
+  void eval_with_tangent(const In& y, double t, const In& dy, Eigen::MatrixXd& g, Eigen::MatrixXd& dg) const;
+  // The derivatives of g(t, .) at y along each of dys: one pass for the values, then one for each direction's
+  // tangent (dg_y's matrix, column by column).
+  void eval_with_tangents(const In& y, double t, const std::vector<Eigen::MatrixXd>& dys,
+                          std::vector<Eigen::MatrixXd>& dgs) const;
+  std::size_t instructions() const;
+  double cost() const { return cost_; }  // estimated flops of eval_with_tangent
+
+  struct Workspace;
+
+ private:
+  friend class Compiler;
+  Program();
+  static constexpr double kMaxCachedElements = 65536;
+  void run(const In& y, double t, const In* dy, Workspace& ws, bool known = false) const;
+  void prepare(Workspace& ws) const;
+  const Eigen::MatrixXd& result(const Workspace& ws) const;
+  template <class F>
+  void with_workspace(F&& f) const;
+
+  int n_ = 0;
+  std::vector<Instruction> code_;       // the values that depend on y, in order
+  std::vector<Instruction> time_code_;  // the values that depend on t and not on y, run when t changes
+  // Per slot: size, whether it depends on y (it has a tangent), on t alone, and its value when on neither.
+  std::vector<int> rows_, cols_;
+  std::vector<bool> varies_, timed_;
+  std::vector<Eigen::MatrixXd> constant_;
+  int y_slot_ = 0, t_slot_ = 0, result_ = 0;
+  double cost_ = 0;
+  double elements_ = 0;  // entries of all slots
+  std::uint64_t id_ = 0;  // tells a thread's cached workspace which program it was sized for
+};
+
+}  // namespace lienewton::user_field

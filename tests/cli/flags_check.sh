@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Flags: `lienewton solve --n 8 --h 2 --method newton-group` is the solve of the same JSON on stdin (flags typed
+# by the field table: integers, numbers, enum strings, lists), flags override stdin, --pretty prints the same JSON
+# indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` and
+# `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text; heavy-top integrates.
+set -euo pipefail
+bin=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+timeless() { jq -S 'del(.seconds, .cpu_seconds, .trace[]?.seconds, .trace[]?.cpu_seconds, .cells[]?.seconds)' "$1"; }
+echo '{"n":8,"h":2,"method":"newton-group"}' | "$bin" solve > "$dir/stdin.json"
+"$bin" solve --n 8 --h 2 --method newton-group < /dev/null > "$dir/flags.json"
+cmp <(timeless "$dir/stdin.json") <(timeless "$dir/flags.json") || { echo "flags differ from the same JSON on stdin"; exit 1; }
+echo '{"n":8,"h":0.5,"method":"fixed-point"}' | "$bin" solve --h 2 --method newton-group > "$dir/over.json"
+cmp <(timeless "$dir/stdin.json") <(timeless "$dir/over.json") || { echo "flags do not override stdin"; exit 1; }
+"$bin" solve --n 8 --h 2 --method newton-group --pretty < /dev/null > "$dir/pretty.json"
+[[ $(wc -l < "$dir/pretty.json") -gt 10 ]] || { echo "--pretty did not indent"; exit 1; }
+cmp <(timeless "$dir/flags.json") <(timeless "$dir/pretty.json") || { echo "--pretty changed the answer"; exit 1; }
+# Lists and the dash spelling of a field name.
+"$bin" sweep --problem paper-linear --differential exact --methods newton-group --n 3,4 --h 0.5,2 --max-iterations 50 \
+  < /dev/null > "$dir/sweep.json"
+[[ $(jq '.cells | length' "$dir/sweep.json") -eq 4 ]] || { echo "sweep flags: not a 2 x 2 grid"; exit 1; }
+status=0
+"$bin" solve --speed 3 < /dev/null 2> "$dir/err" > /dev/null || status=$?
+[[ $status -eq 2 && $(jq -r '.error.field' "$dir/err") == speed ]] || { echo "unknown flag: status $status, $(cat "$dir/err")"; exit 1; }
+status=0
+"$bin" solve --h abc < /dev/null 2> "$dir/err" > /dev/null || status=$?
+[[ $status -eq 2 && $(jq -r '.error.field' "$dir/err") == h ]] || { echo "bad h: status $status, $(cat "$dir/err")"; exit 1; }
+png() { [[ $(head -c 8 "$1" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]]; }
+"$bin" render residuals --n 3 --h 0.5 --methods newton-group,fixed-point < /dev/null > "$dir/residuals.png"
+png "$dir/residuals.png" || { echo "render residuals: not a PNG"; exit 1; }
+echo '{"problem":"rigid-body","h":[0.25,0.125],"choices":[{"integrator":"implicit-euler"}]}' \
+  | "$bin" render work-precision --width 480 --height 320 > "$dir/wp.png"
+png "$dir/wp.png" || { echo "render work-precision: not a PNG"; exit 1; }
+"$bin" render heatmap --methods newton-group --n 3,4 --h 1,2 --format svg < /dev/null > "$dir/heatmap.svg"
+grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' "$dir/heatmap.svg" || { echo "render heatmap --format svg: not SVG"; exit 1; }
+grep -q '>Where each method converges: paper-linear on SO(N)</text>' "$dir/heatmap.svg" || { echo "SVG without its title"; exit 1; }
+# The heavy top by flags (its parameters as a JSON object), its invariants' drifts, and their picture.
+"$bin" integrate --problem heavy-top --group SOxR --integrator dirk-cg2 --h 0.0078125 --t-end 0.0625 \
+  --heavy-top '{"mass":10}' < /dev/null > "$dir/top.json"
+jq -e '.status == "converged" and (.energy_drift > 0) and (.vertical_momentum_drift > 0) and (.steps | length) == 8' \
+  "$dir/top.json" > /dev/null || { echo "integrate heavy-top: $(head -c 300 "$dir/top.json")"; exit 1; }
+"$bin" render invariants --problem heavy-top --group SOxR --h 0.0078125 --t-end 0.0625 --width 320 --height 240 \
+  < /dev/null > "$dir/invariants.png"
+png "$dir/invariants.png" || { echo "render invariants: not a PNG"; exit 1; }
+echo "flags, --pretty and the render commands behave"

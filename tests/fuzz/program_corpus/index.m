@@ -1,0 +1,1 @@
+u = [y(1:2, :); zeros(size(y(3:end, :)))]; v = y(end:-1:1, [1 3 2 4 5]); g = skew(u + v.^2 - triu(y, 1) + tril(y, -1)*t)

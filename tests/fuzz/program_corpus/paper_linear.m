@@ -1,0 +1,1 @@
+g = diag(diag(y,1),1) - diag(diag(y,1),-1)

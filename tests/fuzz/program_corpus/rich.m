@@ -1,0 +1,1 @@
+A = eye(4) + 0.5*(y'*y); u = tanh(y) / A + exp(y) ./ (2 + cos(y)) + trace(y)*y + norm(y(:,1))*y^3; g = skew(u)
