@@ -4,10 +4,12 @@
 #   scripts/test.sh              Release build in build/ (with -DLIENEWTON_MPI=ON)
 #   scripts/test.sh --sanitize   the same tests in an ASan + UBSan (incl. float-cast-overflow) build in build-asan/,
 #                                compiled with clang (the fuzzer's compiler, scripts/packages-fuzz.txt)
+#   Further arguments go to ctest (CI's sanitize stage passes -LE attack: its attack stage runs the battery).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/deps.sh test
 if [ "${1:-}" = --sanitize ]; then
+  shift
   scripts/deps.sh fuzz
   dir=build-asan
   # The sanitizer build is CI's longest stage. clang compiles a solver instance file under ASan + UBSan in 36 s
@@ -21,4 +23,4 @@ else
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_MPI=ON
 fi
 cmake --build "$dir" -j"$(nproc)"
-ctest --test-dir "$dir" --output-on-failure -j"$(nproc)"
+ctest --test-dir "$dir" --output-on-failure -j"$(nproc)" "$@"

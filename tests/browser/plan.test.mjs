@@ -11,14 +11,18 @@ import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, wa
 const { binary, webRoot, shots } = testArguments('plan.test.mjs');
 watchdog(150_000);
 
-// 30 000 numbers: a basin map of 3 methods may be 57 x 57 (3 numbers per pixel); 1 s per sweep or map.
-const LIMITED = ['--max-output-values', '30000', '--sweep-timeout', '1'];
-let browser; let page; let plain; let limited;
+// 30 000 numbers: a basin map of 3 methods may be 57 x 57 (3 numbers per pixel). The limited server also stops
+// a sweep or map after 1 s; the capped one has only the output cap, so that the basin plan's probe and the
+// 57 x 57 map finish on a slow (sanitizer) build too, whose timings the 1 s limit would otherwise decide.
+const CAPPED = ['--max-output-values', '30000'];
+const LIMITED = [...CAPPED, '--sweep-timeout', '1'];
+let browser; let page; let plain; let limited; let capped;
 const errors = [];
 
 before(async () => {
   const { chromium } = await loadPlaywright();
-  [plain, limited] = await Promise.all([startServer(binary, webRoot), startServer(binary, webRoot, { flags: LIMITED })]);
+  [plain, limited, capped] = await Promise.all([startServer(binary, webRoot),
+    startServer(binary, webRoot, { flags: LIMITED }), startServer(binary, webRoot, { flags: CAPPED })]);
   browser = await launchChromium(chromium);
   page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
   page.setDefaultTimeout(60_000);  // the sanitizer build under a parallel ctest is slow, not wrong
@@ -109,11 +113,11 @@ test('stability map: the plan warns beyond the server\'s time limit and its grid
 });
 
 test('basins: the size hint is this server\'s real limit for the ticked methods; estimate, pace', async () => {
-  const panel = await open(limited, 'basins', { size: 24 });
+  const panel = await open(capped, 'basins', { size: 24 });
   const hint = panel.locator('.field[data-field="size"] .hint');
   await hint.filter({ hasText: 'at most 57 with 3 methods' }).waitFor();
   // The hint's number is the limit: one more is refused, that size is served.
-  const sizeOk = async (size) => (await fetch(`${limited.base}/api/v1/basins`, { method: 'POST',
+  const sizeOk = async (size) => (await fetch(`${capped.base}/api/v1/basins`, { method: 'POST',
     headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ size, max_iterations: 1 }) })).status;
   assert.equal(await sizeOk(58), 413);
   assert.equal(await sizeOk(57), 200);
