@@ -46,6 +46,9 @@ struct Bound {
 struct Program::Workspace {
   std::uint64_t id = 0;
   std::optional<double> time;  // the t the timed slots hold
+  // The values hold g's pass at the y in y's slot (and the time): a further call at that y forms tangents only.
+  // derivatives: the aux slots hold f'(a) of the entrywise functions too (a tangent pass left them).
+  bool holds_y = false, holds_derivatives = false;
   // Per slot: value, tangent, and what a tangent pass reuses from the value pass (f'(a) of an entrywise
   // function, the inverse behind \ and /).
   std::vector<MatrixXd> val, tan, aux;
@@ -276,8 +279,8 @@ void entrywise_product(const MatrixXd& a, const MatrixXd& b, MatrixXd& out, cons
 }
 
 // The value of one instruction from its operands' values, and (when dx is given) its tangent from theirs. known:
-// out already holds the value, and aux what the value pass left for the tangents (a further direction after the
-// first), so only the tangent is formed. Folding constants and the values of t pass no tangents.
+// out already holds the value, and aux what the value pass left for the tangents (a further call at the same y),
+// so only the tangent is formed. Folding constants and the values of t pass no tangents.
 void apply(const Instruction& ins, const std::vector<const MatrixXd*>& x, MatrixXd& out,
            const std::vector<const MatrixXd*>* dx, MatrixXd* dout, MatrixXd& aux, bool known = false) {
   auto var = [&](unsigned i) { return ((ins.varying >> i) & 1u) != 0; };
@@ -921,6 +924,7 @@ void check_parameter(const std::string& name, const Eigen::MatrixXd& value) {
 void Program::prepare(Workspace& ws) const {
   ws.id = id_;
   ws.time.reset();
+  ws.holds_y = ws.holds_derivatives = false;
   const std::size_t slots = rows_.size();
   ws.val.assign(slots, MatrixXd());
   ws.tan.assign(slots, MatrixXd());
@@ -952,6 +956,15 @@ void Program::prepare(Workspace& ws) const {
 
 // A small program's slots are sized once per thread and kept, so its evaluations allocate nothing; a large one's
 // are sized per call and freed after it.
+namespace {
+// One per thread, shared by every kind of evaluation (a thread_local inside with_workspace would be one per
+// lambda type, so that g and dg_y at the same y would not find each other's values).
+Program::Workspace& thread_workspace() {
+  thread_local Program::Workspace cached;
+  return cached;
+}
+}  // namespace
+
 template <class F>
 void Program::with_workspace(F&& f) const {
   if (elements_ > kMaxCachedElements) {
@@ -960,27 +973,53 @@ void Program::with_workspace(F&& f) const {
     f(local);
     return;
   }
-  thread_local Workspace cached;
+  Workspace& cached = thread_workspace();
   if (cached.id != id_) prepare(cached);
   f(cached);
 }
 
-void Program::run(const In& y, double t, const In* dy, Workspace& ws, bool known) const {
+namespace {
+// a and b hold the same numbers, bit for bit (-0 is not 0, a NaN is itself).
+bool same_bits(const MatrixXd& a, const Program::In& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      if (std::bit_cast<std::uint64_t>(a(i, j)) != std::bit_cast<std::uint64_t>(b(i, j))) return false;
+  return true;
+}
+}  // namespace
+
+void Program::run(const In& y, double t, const In* dy, Workspace& ws) const {
   if (cancellation_requested()) throw Cancelled{};
-  if (!known && ws.time != t) {  // the values of t alone, once per time (an integrator's stage)
-    ws.val[static_cast<std::size_t>(t_slot_)](0, 0) = t;
-    for (std::size_t i = 0; i < time_code_.size(); ++i) {
-      const Bound& b = ws.time_code[i];
-      apply(time_code_[i], b.x, *b.out, nullptr, nullptr, *b.aux);
-    }
-    ws.time = t;
-  }
   const auto ys = static_cast<std::size_t>(y_slot_);
-  if (!known) ws.val[ys] = y;
+  // Newton asks for g(y) and then for dg_y at the same y (one direction or a basis of them): the values of the
+  // last y are kept, and a call at that y forms its tangents only.
+  const bool known = ws.holds_y && ws.time == t && same_bits(ws.val[ys], y);
+  if (!known) {
+    ws.holds_y = false;  // until this pass has run through
+    if (ws.time != t) {  // the values of t alone, once per time (an integrator's stage)
+      ws.val[static_cast<std::size_t>(t_slot_)](0, 0) = t;
+      for (std::size_t i = 0; i < time_code_.size(); ++i) {
+        const Bound& b = ws.time_code[i];
+        apply(time_code_[i], b.x, *b.out, nullptr, nullptr, *b.aux);
+      }
+      ws.time = t;
+    }
+    ws.val[ys] = y;
+  } else if (dy && !ws.holds_derivatives) {  // the values came from g alone: f'(a) of its entrywise functions
+    for (std::size_t i = 0; i < code_.size(); ++i)
+      if (code_[i].op == Op::fn) derivative_fn(code_[i].fn, *ws.code[i].x[0], *ws.code[i].out, *ws.code[i].aux);
+    ws.holds_derivatives = true;
+  }
+  if (known && !dy) return;
   if (dy) ws.tan[ys] = *dy;
   for (std::size_t i = 0; i < code_.size(); ++i) {
     const Bound& b = ws.code[i];
     apply(code_[i], b.x, *b.out, dy ? &b.dx : nullptr, dy ? b.dout : nullptr, *b.aux, known);
+  }
+  if (!known) {
+    ws.holds_y = true;
+    ws.holds_derivatives = dy != nullptr;
   }
 }
 
@@ -1009,9 +1048,9 @@ void Program::eval_with_tangents(const In& y, double t, const std::vector<Matrix
                                  std::vector<MatrixXd>& dgs) const {
   dgs.resize(dys.size());
   with_workspace([&](Workspace& ws) {
-    for (std::size_t k = 0; k < dys.size(); ++k) {
+    for (std::size_t k = 0; k < dys.size(); ++k) {  // the values once: the later directions find them kept
       const In dy(dys[k]);
-      run(y, t, &dy, ws, k > 0);
+      run(y, t, &dy, ws);
       dgs[k] = ws.tan[static_cast<std::size_t>(result_)];
     }
   });

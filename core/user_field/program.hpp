@@ -61,7 +61,7 @@ class Program {
   friend class Compiler;
   Program();
   static constexpr double kMaxCachedElements = 65536;
-  void run(const In& y, double t, const In* dy, Workspace& ws, bool known = false) const;
+  void run(const In& y, double t, const In* dy, Workspace& ws) const;
   void prepare(Workspace& ws) const;
   const Eigen::MatrixXd& result(const Workspace& ws) const;
   template <class F>

@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "core/integrate.hpp"
 #include "core/order_fit.hpp"
@@ -351,6 +353,49 @@ TEST(UserField, ValuesOfTAloneFollowTheTime) {
   EXPECT_GT(compile_error("a = zeros(t); g = y - y'").line(), 0);
   EXPECT_GT(compile_error("g = y(1:t, :)").line(), 0);
   EXPECT_GT(compile_error("g = y^t - (y^t)'").line(), 0);
+}
+
+// g and then dg_y at the same y share the values of one pass; every change of y (by a single bit: -0 for 0) or of t
+// forms them anew. Each call is compared with a freshly compiled program, which has nothing kept.
+TEST(UserField, KeptValuesAreThoseOfTheSameYAndTime) {
+  const std::string source = "u = sin(y) * exp(y/4) + inv(eye(3) + y'*y) .* y + t*y^3; g = u - u'";
+  const auto program = user_field::compile(source, 3, {});
+  const Eigen::MatrixXd y1 = SONGroup(3).random(1), y2 = SONGroup(3).random(2);
+  const Eigen::MatrixXd d1 = Eigen::MatrixXd::Ones(3, 3), d2 = Eigen::MatrixXd::Identity(3, 3);
+  struct Call { const Eigen::MatrixXd* y; double t; const Eigen::MatrixXd* dy; };
+  const std::vector<Call> calls = {{&y1, 0, nullptr}, {&y1, 0, &d1}, {&y1, 0, &d2}, {&y2, 0, &d1},
+                                   {&y1, 0.5, nullptr}, {&y1, 0.5, &d2}, {&y1, 0, &d2}, {&y2, 0, nullptr},
+                                   {&y2, 0, nullptr}, {&y2, 0.5, &d1}, {&y2, 0.5, nullptr}};
+  // What each call must answer, from fresh programs first (a thread keeps one program's values at a time).
+  std::vector<Eigen::MatrixXd> want_g(calls.size()), want_dg(calls.size());
+  for (std::size_t k = 0; k < calls.size(); ++k)
+    user_field::compile(source, 3, {})->eval_with_tangent(*calls[k].y, calls[k].t, calls[k].dy ? *calls[k].dy : d1,
+                                                          want_g[k], want_dg[k]);
+  std::vector<Eigen::MatrixXd> want_basis(2), unused(2);
+  for (int i = 0; i < 2; ++i)
+    user_field::compile(source, 3, {})->eval_with_tangent(y2, 0.5, i == 0 ? d1 : d2, unused[i], want_basis[i]);
+  for (std::size_t k = 0; k < calls.size(); ++k) {
+    const Call& c = calls[k];
+    Eigen::MatrixXd g, dg;
+    if (c.dy) program->eval_with_tangent(*c.y, c.t, *c.dy, g, dg);
+    else program->eval(*c.y, c.t, g);
+    EXPECT_LE((g - want_g[k]).norm(), 1e-14 * want_g[k].norm()) << "call " << k;
+    if (c.dy) {
+      EXPECT_LE((dg - want_dg[k]).norm(), 1e-14 * want_dg[k].norm()) << "call " << k;
+    }
+  }
+  // Every direction of a basis at once, after g at that y.
+  std::vector<Eigen::MatrixXd> dgs;
+  program->eval_with_tangents(y2, 0.5, {d1, d2}, dgs);
+  for (int i = 0; i < 2; ++i) EXPECT_LE((dgs[i] - want_basis[i]).norm(), 1e-14 * want_basis[i].norm());
+  // 0 and -0 are different inputs: 1/0 = Inf, 1/-0 = -Inf.
+  const auto reciprocal = user_field::compile("v = 1./y; g = v - v'", 3, {});
+  Eigen::MatrixXd y0{{1, 0, 2}, {3, 4, 5}, {6, 7, 8}}, g_plus, g_minus;
+  reciprocal->eval(y0, 0, g_plus);
+  y0(0, 1) = -0.0;
+  reciprocal->eval(y0, 0, g_minus);
+  EXPECT_EQ(g_plus(0, 1), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(g_minus(0, 1), -std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
