@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/group_registry.hpp"
 #include "server/http_errors.hpp"
 
 namespace lienewton::service {
@@ -20,12 +21,18 @@ void refuse_beyond(double values, const OutputLimits& limits, const char* field,
                      " numbers, more than the server's limit of " + std::to_string(limits.max_values));
 }
 
+// Numbers in one state y: its matrix is the group's size (n x n on SO(n), 4 x 4 on SE(3), 6 x 6 on SO(3) x R^3).
+double state_values(const ProblemSpec& problem) {
+  const double size = group_family(problem.group).matrix_size(problem.n);
+  return size * size;
+}
+
 }  // namespace
 
 void check_output(const SolveRequest& r, const OutputLimits& limits) {
   if (!r.solver.include_iterates) return;
   const int n = r.problem.n, max_iterations = r.solver.max_iterations;
-  const double values = (max_iterations + 1.0) * n * n;
+  const double values = (max_iterations + 1.0) * state_values(r.problem);
   refuse_beyond(values, limits, "include_iterates", "include_iterates with max_iterations " +
                                                          std::to_string(max_iterations) + " and n " + std::to_string(n));
 }
@@ -34,13 +41,13 @@ void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
   // Adaptive: at most max_steps records; frames: at most 2 frames + 1 states besides y(0).
   const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / r.h);
   const double states = r.adaptive() ? 2.0 * r.frames + 2.0 : r.frames + 1.0;
-  const double values = steps * kStepValues + states * r.problem.n * r.problem.n;
+  const double values = steps * kStepValues + states * state_values(r.problem);
   refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");
 }
 
 void fit_output(IntegrateRequest& r, const OutputLimits& limits) {
   if (!r.adaptive()) return;
-  const double states = (2.0 * r.frames + 2.0) * r.problem.n * r.problem.n;
+  const double states = (2.0 * r.frames + 2.0) * state_values(r.problem);
   const double room = std::floor((static_cast<double>(limits.max_values) - states) / kStepValues);
   if (room >= 1 && room < r.max_steps) r.max_steps = static_cast<int>(room);
 }

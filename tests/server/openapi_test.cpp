@@ -94,6 +94,27 @@ TEST(OpenApi, PublishesTheRunningServersLimits) {
   EXPECT_EQ(at->status, 200) << at->body;
 }
 
+// The output cap counts each iterate as the group's matrix: 4 x 4 on SE(3), where n = 3 (n x n would let 81
+// iterates of 16 numbers, 1296, under a cap of 1000).
+TEST(OpenApi, IteratesCountTheGroupsMatrixSize) {
+  ServerOptions options;
+  options.output.max_values = 1000;
+  testing::TestServer s(options);
+  auto c = s.client();
+  const json se3{{"group", "SE"}, {"h", 0.5}, {"include_iterates", true}, {"max_iterations", 80},
+                 {"g", "w = [0.6; 0.8; 0.5]; g = [0 -w(3) w(2) 1; w(3) 0 -w(1) 0; -w(2) w(1) 0 0; 0 0 0 0]"}};
+  auto over = c.Post("/api/v1/solve", se3.dump(), "application/json");
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 413) << over->body;
+  EXPECT_EQ(json::parse(over->body)["error"]["field"], "include_iterates") << over->body;
+  json so3 = se3;
+  so3.erase("group");
+  so3["g"] = "w = [0.6; 0.8; 0.5]; g = [0 -w(3) w(2); w(3) 0 -w(1); -w(2) w(1) 0]";
+  auto at = c.Post("/api/v1/solve", so3.dump(), "application/json");  // 81 x 9 = 729 numbers
+  ASSERT_TRUE(at);
+  EXPECT_EQ(at->status, 200) << at->body;
+}
+
 TEST(OpenApi, RequestSchemasListTheCodecFields) {
   const json doc = json::parse(openapi_document(ServerOptions{}));
   const json& solve = doc["components"]["schemas"]["SolveRequest"]["properties"];
