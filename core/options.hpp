@@ -36,6 +36,9 @@ inline constexpr int order_of(Integrator i) {
   }
   return 1;
 }
+// Whether an integrator's steps solve implicit stages (all but the explicit rkmk4): the method, the differential
+// and the solver's options matter only then.
+inline constexpr bool solves_stages(Integrator i) { return i != Integrator::rkmk4; }
 // How the Newton system is solved: auto picks lu below kKrylovThreshold (solvers/newton_step.hpp) and gmres above;
 // lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
 enum class LinearSolver { auto_select, lu, gmres };

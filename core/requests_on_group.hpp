@@ -212,7 +212,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   const auto take = [&](const Element& y, double t, double dt, StepRecord& rec) -> std::optional<Element> {
     throw_if_cancelled();
     return rkmk                                  ? rkmk_step(y, t, dt, rec)
-           : req.integrator == Integrator::rkmk4 ? explicit_step(y, t, dt, rec)
+           : !solves_stages(req.integrator)      ? explicit_step(y, t, dt, rec)
                                                  : dirk_step(y, t, dt, rec);
   };
   // dt from y at time t, as one step or as two halves (recursively): y at the end, or nothing.
@@ -380,8 +380,8 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
                    " tries rejected), h from " + format_number(h_smallest) + " to " + format_number(h_largest) +
                    ", every error estimate <= 1 (rtol " + format_number(control.rtol) + ", atol " +
                    format_number(control.atol) + ")" +
-                   (req.integrator == Integrator::rkmk4 ? std::string()
-                                                        : "; every stage converged to the root continued from its start");
+                   (!solves_stages(req.integrator) ? std::string()
+                                                   : "; every stage converged to the root continued from its start");
   }
   res.cpu_seconds = thread_cpu_seconds() - cpu_start;
   if (!res.steps.empty()) res.mean_iterations = double(res.total_iterations) / double(res.steps.size());
@@ -389,7 +389,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   res.initial_invariants = drift.initial();
   res.invariant_drifts = drift.drift();
   if (res.status == Status::converged && !res.adaptive)
-    res.reason = req.integrator == Integrator::rkmk4
+    res.reason = !solves_stages(req.integrator)
                      ? std::to_string(steps) + " explicit steps (" + std::to_string(res.substeps) + " substeps)"
                      : "every stage of " + std::to_string(steps) + " steps (" + std::to_string(res.substeps) +
                            " substeps) converged to the root continued from its start";

@@ -1,7 +1,7 @@
 #pragma once
 // Labels are drawn from a glyph atlas baked once per process with stb_truetype from a TrueType font
 // (DejaVu Sans by default, see LIENEWTON_FONT). Text is UTF-8: printable ASCII plus the few mathematical
-// characters in kExtraCodepoints (sub- and superscript digits, ‖, −, ≈, ...); anything else prints as '?'.
+// characters in kExtraCodepoints (sub- and superscript digits, ‖, −, ≈, dashes, ...); anything else prints as '?'.
 #include <cstdint>
 #include <iterator>
 #include <string>
@@ -17,11 +17,11 @@ struct GlyphQuad {
   float u0, v0, u1, v1;  // atlas texture coordinates
 };
 
-// Beyond ASCII, sorted: ² ³ µ · ¹ × π ᵀ ᵏ ‖ … ⁰ ⁴-⁹ ⁻ ₀-₉ ₙ − ≈ ≠ ≤ ≥.
+// Beyond ASCII, sorted: ² ³ µ · ¹ × π ᵀ ᵏ – — ‖ … ⁰ ⁴-⁹ ⁻ ₀-₉ ₙ − ≈ ≠ ≤ ≥.
 inline constexpr char32_t kExtraCodepoints[] = {
-    0x00B2, 0x00B3, 0x00B5, 0x00B7, 0x00B9, 0x00D7, 0x03C0, 0x1D40, 0x1D4F, 0x2016, 0x2026, 0x2070, 0x2074, 0x2075,
-    0x2076, 0x2077, 0x2078, 0x2079, 0x207B, 0x2080, 0x2081, 0x2082, 0x2083, 0x2084, 0x2085, 0x2086, 0x2087,
-    0x2088, 0x2089, 0x2099, 0x2212, 0x2248, 0x2260, 0x2264, 0x2265};
+    0x00B2, 0x00B3, 0x00B5, 0x00B7, 0x00B9, 0x00D7, 0x03C0, 0x1D40, 0x1D4F, 0x2013, 0x2014, 0x2016, 0x2026, 0x2070,
+    0x2074, 0x2075, 0x2076, 0x2077, 0x2078, 0x2079, 0x207B, 0x2080, 0x2081, 0x2082, 0x2083, 0x2084, 0x2085, 0x2086,
+    0x2087, 0x2088, 0x2089, 0x2099, 0x2212, 0x2248, 0x2260, 0x2264, 0x2265};
 
 // The code points of UTF-8 text; a malformed byte becomes U+FFFD (which prints as '?').
 std::u32string decode_utf8(std::string_view text);

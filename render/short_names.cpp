@@ -9,6 +9,7 @@ std::string series_name(Method method, Differential differential) {
 }
 
 std::string series_name(Integrator integrator, Method method, Differential differential) {
+  if (!solves_stages(integrator)) return std::string(short_name(integrator));  // no equation, no method
   return std::string(short_name(integrator)) + ", " + series_name(method, differential);
 }
 

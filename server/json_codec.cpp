@@ -884,11 +884,13 @@ json to_json(const SweepResult& r) {
   return out;
 }
 
+namespace {
 // One number (or null) per invariant, named prefix + its API name + suffix (openapi.cpp's invariant_numbers).
 json& add_invariants(json& out, const InvariantValues& values, const std::string& prefix, const std::string& suffix) {
   for (Invariant i : kAllInvariants) out[prefix + std::string(to_string(i)) + suffix] = optional_number(values[i]);
   return out;
 }
+}  // namespace
 
 json to_json(const StepRecord& s) {
   json out{{"step", s.step},

@@ -76,6 +76,9 @@ json basin_root_colors() {
 json openapi_labels(const ServerOptions& options) {
   json methods = entries(kAllMethods);
   for (std::size_t i = 0; i < std::size(kAllMethods); ++i) methods[i]["uses_differential"] = uses_differential(kAllMethods[i]);
+  json integrators = entries(kAllIntegrators);  // rkmk4 is explicit: legends name no method for it
+  for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+    integrators[i]["solves_stages"] = solves_stages(kAllIntegrators[i]);
   // A problem's group when it has one (heavy-top: SOxR) and the invariants its integrations report.
   json problems = entries(kAllProblems);
   for (std::size_t i = 0; i < std::size(kAllProblems); ++i) {
@@ -90,7 +93,7 @@ json openapi_labels(const ServerOptions& options) {
            {{"problem", problems},
             {"method", methods},
             {"differential", entries(kAllDifferentials)},
-            {"integrator", entries(kAllIntegrators)},
+            {"integrator", integrators},
             {"linear_solver", entries(kAllLinearSolvers)},
             {"globalization", entries(kAllGlobalizations)},
             {"stopping", entries(kAllStoppings)},

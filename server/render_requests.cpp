@@ -330,9 +330,12 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   if (stopped) throw RenderCancelled{};
   frames = rotations(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
   start = frames.front();
-  caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) + ", " + std::string(words(r.solver.method).label),
+  const bool solves = solves_stages(r.integrator);  // rkmk4 is explicit: no method, differential or tol
+  caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) +
+                 (solves ? ", " + std::string(words(r.solver.method).label) : std::string()),
              field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
-                 ", t_end = " + number_text(r.t_end) + " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
+                 ", t_end = " + number_text(r.t_end) +
+                 (solves ? " \u00b7 " + solver_facts(r.solver, uses_differential(r.solver.method)) : std::string())};
   return draw(frames, start);
 }
 

@@ -1,6 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "core/options.hpp"
+#include "core/vocabulary.hpp"
 #include "render/font.hpp"
+#include "render/options.hpp"
 
 namespace lienewton::render {
 namespace {
@@ -22,6 +27,21 @@ TEST(Font, HasTheMathematicalGlyphsAndFallsBackToAQuestionMark) {
   EXPECT_LT(font.width("\u2082", TextSize::small), font.width("2", TextSize::small));
   EXPECT_EQ(font.width("log\u2082 h", TextSize::small),
             font.width("log", TextSize::small) + font.width("\u2082", TextSize::small) + font.width(" h", TextSize::small));
+}
+
+// The labels that PNG captions and legends print (a method's, an integrator's, a colour metric's) have a glyph
+// for every character: "Crouch–Grossman" is not drawn as "Crouch?Grossman".
+TEST(Font, EveryCaptionLabelIsDrawnWithItsOwnGlyphs) {
+  const Font& font = Font::instance();
+  const auto drawable = [&](std::string_view label) {
+    for (char32_t c : decode_utf8(label))
+      if (!font.has_glyph(c)) return false;
+    return true;
+  };
+  for (Method m : kAllMethods) EXPECT_TRUE(drawable(words(m).label)) << words(m).label;
+  for (Integrator i : kAllIntegrators) EXPECT_TRUE(drawable(words(i).label)) << words(i).label;
+  for (Differential d : kAllDifferentials) EXPECT_TRUE(drawable(words(d).label)) << words(d).label;
+  for (HeatmapMetric h : kAllHeatmapMetrics) EXPECT_TRUE(drawable(words(h).label)) << words(h).label;
 }
 
 }  // namespace

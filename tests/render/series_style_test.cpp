@@ -3,13 +3,25 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 #include <tuple>
 
 #include "render/log_axis.hpp"
 #include "render/series_style.hpp"
+#include "render/short_names.hpp"
 
 namespace lienewton::render {
 namespace {
+
+// A legend names the method and differential of an integrator that solves stages, and only its name for the
+// explicit rkmk4, which uses neither.
+TEST(SeriesName, AnExplicitIntegratorNamesNoMethod) {
+  EXPECT_EQ(series_name(Integrator::rkmk4, Method::newton_group, Differential::exact), "RKMK4");
+  EXPECT_EQ(series_name(Integrator::dirk_cg2, Method::newton_group, Differential::exact),
+            std::string(short_name(Integrator::dirk_cg2)) + ", " + series_name(Method::newton_group, Differential::exact));
+  EXPECT_EQ(series_name(Integrator::dirk_cg2, Method::fixed_point, Differential::exact),
+            std::string(short_name(Integrator::dirk_cg2)) + ", " + std::string(short_name(Method::fixed_point)));
+}
 
 TEST(SeriesStyle, TwentyFourSeriesAreDistinct) {
   std::set<std::tuple<int, int, int, int, int>> seen;

@@ -262,6 +262,9 @@ TEST(OpenApi, ExtensionLabelsEveryEnumValue) {
   for (const auto& entry : ext["enums"]["method"]) {
     EXPECT_EQ(entry["uses_differential"], entry["value"] != "fixed-point") << entry["value"];
   }
+  for (const auto& entry : ext["enums"]["integrator"]) {
+    EXPECT_EQ(entry["solves_stages"], entry["value"] != "rkmk4") << entry["value"];
+  }
   for (const auto& entry : ext["enums"]["status"]) {
     const auto status = status_from_string(entry["value"].get<std::string>());
     ASSERT_TRUE(status) << entry["value"];

@@ -22,6 +22,7 @@ const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixe
   'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
 
 function choiceLabel({ integrator, method, differential }) {
+  if (entry('integrator', integrator).solves_stages === false) return label(INTEGRATORS, integrator);  // explicit: no method
   const m = entry('method', method);
   const d = m.uses_differential ? ` \u00b7 ${label(DIFFERENTIALS, differential)}` : '';
   return `${label(INTEGRATORS, integrator)} \u00b7 ${m.short}${d}`;
