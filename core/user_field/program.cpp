@@ -954,8 +954,6 @@ void Program::prepare(Workspace& ws) const {
   bind(time_code_, ws.time_code);
 }
 
-// A small program's slots are sized once per thread and kept, so its evaluations allocate nothing; a large one's
-// are sized per call and freed after it.
 namespace {
 // One per thread, shared by every kind of evaluation (a thread_local inside with_workspace would be one per
 // lambda type, so that g and dg_y at the same y would not find each other's values).
@@ -965,6 +963,8 @@ Program::Workspace& thread_workspace() {
 }
 }  // namespace
 
+// A small program's slots are sized once per thread and kept, so its evaluations allocate nothing; a large one's
+// are sized per call and freed after it.
 template <class F>
 void Program::with_workspace(F&& f) const {
   if (elements_ > kMaxCachedElements) {
