@@ -187,6 +187,7 @@ void UserField_Sweep(benchmark::State& state, Differential differential, bool fu
   user.problem.g = kSine;
   double t_builtin = 0, t_user = 0;
   int converged_builtin = 0, converged_user = 0;
+  double iterations_builtin = 0, iterations_user = 0, twin_builtin = 0, twin_user = 0;
   for (auto _ : state) {
     double start = process_cpu_seconds();
     const SweepResult a = sweep(built_in);
@@ -198,6 +199,14 @@ void UserField_Sweep(benchmark::State& state, Differential differential, bool fu
     converged_builtin = converged_user = 0;
     for (const auto& c : a.cells) converged_builtin += c.status == Status::converged;
     for (const auto& c : b.cells) converged_user += c.status == Status::converged;
+    for (std::size_t i = 0; i < a.cells.size() && i < b.cells.size(); ++i) {
+      iterations_builtin += a.cells[i].iterations;
+      iterations_user += b.cells[i].iterations;
+      if (a.cells[i].iterations == b.cells[i].iterations && a.cells[i].status == b.cells[i].status) {
+        twin_builtin += a.cells[i].seconds;
+        twin_user += b.cells[i].seconds;
+      }
+    }
   }
   if (converged_user == 0) state.SkipWithError("no cell converged");
   const double runs = static_cast<double>(state.iterations());
@@ -206,6 +215,9 @@ void UserField_Sweep(benchmark::State& state, Differential differential, bool fu
   state.counters["ratio"] = t_user / t_builtin;
   state.counters["converged_builtin"] = converged_builtin;
   state.counters["converged_user"] = converged_user;
+  state.counters["iterations_builtin"] = iterations_builtin;
+  state.counters["iterations_user"] = iterations_user;
+  state.counters["twin_ratio"] = twin_user / twin_builtin;
 }
 BENCHMARK_CAPTURE(UserField_Sweep, exact/short, Differential::exact, false)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(UserField_Sweep, fd/short, Differential::finite_difference, false)

@@ -53,6 +53,13 @@ struct Program::Workspace {
   // function, the inverse behind \ and /).
   std::vector<MatrixXd> val, tan, aux;
   std::vector<Bound> code, time_code;
+  // eval_along's tangents of k directions per slot that depends on y, stacked ((rows k) x cols; empty for the
+  // others), sized for stacked_k directions; and the operands of an instruction taken one direction at a time.
+  Eigen::Index stacked_k = -1;
+  bool stacked_fits = false;
+  std::vector<MatrixXd> stacked, scratch;
+  std::vector<const MatrixXd*> scratch_dx;
+  MatrixXd scratch_out;
 };
 
 namespace {
@@ -110,7 +117,11 @@ void derivative_fn(Fn fn, const MatrixXd& a, const MatrixXd& fa, MatrixXd& out) 
   }
 }
 
-// sin(a) or cos(a) with its derivative, one sincos per entry: what a tangent pass needs, at the price of the value.
+// sin and cos are formed with their derivatives, one sincos per entry, at about the price of the value alone: Newton
+// asks for dg_y at the y of each g(y).
+bool forms_derivative_with_value(Fn fn) { return fn == Fn::sin || fn == Fn::cos; }
+
+// sin(a) or cos(a) with its derivative.
 void sin_cos(Fn fn, const MatrixXd& a, MatrixXd& out, MatrixXd& derivative) {
   out.resize(a.rows(), a.cols());
   derivative.resize(a.rows(), a.cols());
@@ -343,7 +354,7 @@ void apply(const Instruction& ins, const std::vector<const MatrixXd*>& x, Matrix
     }
     case Op::fn:
       if (!known) {
-        if (dx && (ins.fn == Fn::sin || ins.fn == Fn::cos)) {
+        if (forms_derivative_with_value(ins.fn)) {
           sin_cos(ins.fn, a, out, aux);
         } else {
           apply_fn(ins.fn, a, out);
@@ -925,6 +936,8 @@ void Program::prepare(Workspace& ws) const {
   ws.id = id_;
   ws.time.reset();
   ws.holds_y = ws.holds_derivatives = false;
+  ws.stacked_k = -1;
+  ws.stacked.clear();
   const std::size_t slots = rows_.size();
   ws.val.assign(slots, MatrixXd());
   ws.tan.assign(slots, MatrixXd());
@@ -1006,10 +1019,8 @@ void Program::run(const In& y, double t, const In* dy, Workspace& ws) const {
       ws.time = t;
     }
     ws.val[ys] = y;
-  } else if (dy && !ws.holds_derivatives) {  // the values came from g alone: f'(a) of its entrywise functions
-    for (std::size_t i = 0; i < code_.size(); ++i)
-      if (code_[i].op == Op::fn) derivative_fn(code_[i].fn, *ws.code[i].x[0], *ws.code[i].out, *ws.code[i].aux);
-    ws.holds_derivatives = true;
+  } else if (dy && !ws.holds_derivatives) {  // the values came from g alone
+    form_derivatives(ws);
   }
   if (known && !dy) return;
   if (dy) ws.tan[ys] = *dy;
@@ -1020,6 +1031,93 @@ void Program::run(const In& y, double t, const In* dy, Workspace& ws) const {
   if (!known) {
     ws.holds_y = true;
     ws.holds_derivatives = dy != nullptr;
+  }
+}
+
+// f'(a) of the entrywise functions at the values held, for the tangents (sin's and cos's came with the values).
+void Program::form_derivatives(Workspace& ws) const {
+  for (std::size_t i = 0; i < code_.size(); ++i)
+    if (code_[i].op == Op::fn && !forms_derivative_with_value(code_[i].fn)) derivative_fn(code_[i].fn, *ws.code[i].x[0], *ws.code[i].out, *ws.code[i].aux);
+  ws.holds_derivatives = true;
+}
+
+namespace {
+// Direction d's tangent in a stacked matrix of tangents ((rows k) x cols).
+Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> direction(MatrixXd& stacked, Eigen::Index rows, Eigen::Index d) {
+  return {stacked.data() + rows * d, rows, stacked.cols(), Eigen::OuterStride<>(stacked.rows())};
+}
+// The same memory as rows x (k cols), direction d's column j in column d + k j: a product from the left by a
+// value is one product of this wide matrix, as a product from the right is one of the stacked one.
+Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows) {
+  return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
+}
+Eigen::Map<const MatrixXd> side_by_side(const Program::In& stacked, Eigen::Index rows) {
+  return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
+}
+}  // namespace
+
+// Instruction i's tangents along all k directions from its operands' (values and f'(a) held): the product rules
+// of the common operations on the stacked matrices at once, the others one direction at a time.
+void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const {
+  const Instruction& ins = code_[i];
+  const Bound& b = ws.code[i];
+  const auto slot = [&](std::size_t j) { return static_cast<std::size_t>(ins.in[j]); };
+  const auto varies = [&](std::size_t j) { return bool(varies_[slot(j)]); };
+  const auto dx = [&](std::size_t j) -> MatrixXd& { return ws.stacked[slot(j)]; };
+  const auto o = static_cast<std::size_t>(ins.out);
+  MatrixXd& out = ws.stacked[o];
+  const Eigen::Index r = rows_[o], c = cols_[o];
+  bool same_shape = true;  // no operand spreads a 1x1 over the other
+  for (std::size_t j = 0; j < ins.in.size(); ++j) same_shape = same_shape && rows_[slot(j)] == r && cols_[slot(j)] == c;
+  // alpha dA + beta dB, a term left out where its operand is constant
+  const auto combination = [&](double alpha, double beta) {
+    if (varies(0) && varies(1)) out = alpha * dx(0) + beta * dx(1);
+    else if (varies(0)) out = alpha * dx(0);
+    else out = beta * dx(1);
+  };
+  switch (ins.op) {
+    case Op::add: if (same_shape) return combination(1, 1); break;
+    case Op::sub: if (same_shape) return combination(1, -1); break;
+    case Op::axpby: if (same_shape) return combination(ins.alpha, ins.beta); break;
+    case Op::neg: out = -dx(0); return;
+    case Op::transpose: case Op::antisym: case Op::skew:
+      for (Eigen::Index d = 0; d < k; ++d) {
+        const auto a = direction(dx(0), rows_[slot(0)], d);
+        auto t = direction(out, r, d);
+        if (ins.op == Op::transpose) t = a.transpose();
+        else if (ins.op == Op::antisym) t = a - a.transpose();
+        else t = 0.5 * (a - a.transpose());
+      }
+      return;
+    case Op::matmul:  // (AB)' = A'B + AB'
+      if (is_scalar(*b.x[0]) || is_scalar(*b.x[1])) break;
+      if (varies(0)) out.noalias() = dx(0) * *b.x[1];
+      else out.setZero();
+      if (varies(1)) side_by_side(out, r).noalias() += *b.x[0] * side_by_side(dx(1), rows_[slot(1)]);
+      return;
+    case Op::emul:  // (A .* B)' = A' .* B + A .* B'
+      if (!same_shape) break;
+      if (varies(0)) out = (dx(0).array() * b.x[1]->replicate(k, 1).array()).matrix();
+      else out.setZero();
+      if (varies(1)) out.array() += b.x[0]->replicate(k, 1).array() * dx(1).array();
+      return;
+    case Op::fn: out = (b.aux->replicate(k, 1).array() * dx(0).array()).matrix(); return;
+    default: break;
+  }
+  ws.scratch.resize(ins.in.size());
+  ws.scratch_dx.resize(ins.in.size());
+  for (Eigen::Index d = 0; d < k; ++d) {
+    for (std::size_t j = 0; j < ins.in.size(); ++j) {
+      if (!varies(j)) {
+        ws.scratch_dx[j] = &ws.tan[slot(j)];  // zero
+        continue;
+      }
+      ws.scratch[j] = direction(dx(j), rows_[slot(j)], d);
+      ws.scratch_dx[j] = &ws.scratch[j];
+    }
+    ws.scratch_out.resize(r, c);
+    apply(ins, b.x, *b.out, &ws.scratch_dx, &ws.scratch_out, *b.aux, true);
+    direction(out, r, d) = ws.scratch_out;
   }
 }
 
@@ -1044,15 +1142,41 @@ void Program::eval_with_tangent(const In& y, double t, const In& dy, MatrixXd& g
   });
 }
 
-void Program::eval_with_tangents(const In& y, double t, const std::vector<MatrixXd>& dys,
-                                 std::vector<MatrixXd>& dgs) const {
-  dgs.resize(dys.size());
+void Program::eval_along(const In& y, double t, const In& us, MatrixXd& dgs) const {
+  const Eigen::Index n = n_, k = us.rows() / n;
+  dgs.resize(n * k, n);
   with_workspace([&](Workspace& ws) {
-    for (std::size_t k = 0; k < dys.size(); ++k) {  // the values once: the later directions find them kept
-      const In dy(dys[k]);
-      run(y, t, &dy, ws);
-      dgs[k] = ws.tan[static_cast<std::size_t>(result_)];
+    if (ws.stacked_k != k) {
+      double elements = 0;
+      for (std::size_t s = 0; s < rows_.size(); ++s)
+        if (varies_[s]) elements += double(rows_[s]) * double(cols_[s]) * double(k);
+      ws.stacked_fits = elements <= kMaxStackedElements;
+      ws.stacked.assign(rows_.size(), MatrixXd());
+      if (ws.stacked_fits)
+        for (std::size_t s = 0; s < rows_.size(); ++s)
+          if (varies_[s]) ws.stacked[s].resize(rows_[s] * k, cols_[s]);
+      ws.stacked_k = k;
     }
+    if (!ws.stacked_fits) {  // one direction at a time: the values once, the later directions find them kept
+      MatrixXd dy;
+      for (Eigen::Index d = 0; d < k; ++d) {
+        dy.noalias() = y * us.middleRows(d * n, n);
+        const In in(dy);
+        run(y, t, &in, ws);
+        dgs.middleRows(d * n, n) = ws.tan[static_cast<std::size_t>(result_)];
+      }
+      return;
+    }
+    run(y, t, nullptr, ws);
+    if (!ws.holds_derivatives) form_derivatives(ws);
+    const auto ys = static_cast<std::size_t>(y_slot_), r = static_cast<std::size_t>(result_);
+    side_by_side(ws.stacked[ys], n).noalias() = y * side_by_side(us, n);
+    for (std::size_t i = 0; i < code_.size(); ++i) {
+      if (cancellation_requested()) throw Cancelled{};
+      tangents_along(i, k, ws);
+    }
+    if (varies_[r]) dgs = ws.stacked[r];
+    else dgs.setZero();  // g does not depend on y
   });
 }
 

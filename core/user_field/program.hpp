@@ -48,10 +48,10 @@ class Program {
   void eval(const In& y, double t, Eigen::MatrixXd& g) const;
   // g(t, y) and its derivative along dy: dg = d/ds g(t, y + s dy) at s = 0.
   void eval_with_tangent(const In& y, double t, const In& dy, Eigen::MatrixXd& g, Eigen::MatrixXd& dg) const;
-  // The derivatives of g(t, .) at y along each of dys: one pass for the values, then one for each direction's
-  // tangent (dg_y's matrix, column by column).
-  void eval_with_tangents(const In& y, double t, const std::vector<Eigen::MatrixXd>& dys,
-                          std::vector<Eigen::MatrixXd>& dgs) const;
+  // dg_y's matrix on a basis U_1 ... U_k of an algebra: the derivatives of g(t, .) at y along y U_d, stacked as
+  // us is (n k x n, rows (d-1) n ... d n - 1 hold U_d; dgs alike). One pass for the values, then one for the
+  // tangents of all k directions together, each product rule one product of wide matrices.
+  void eval_along(const In& y, double t, const In& us, Eigen::MatrixXd& dgs) const;
   std::size_t instructions() const;
   double cost() const { return cost_; }  // estimated flops of eval_with_tangent
 
@@ -62,6 +62,10 @@ class Program {
   Program();
   static constexpr double kMaxCachedElements = 65536;
   void run(const In& y, double t, const In* dy, Workspace& ws) const;
+  void form_derivatives(Workspace& ws) const;
+  void tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const;
+  // Entries of the tangents of all directions together above which eval_along takes one direction at a time.
+  static constexpr double kMaxStackedElements = 1 << 21;
   void prepare(Workspace& ws) const;
   const Eigen::MatrixXd& result(const Workspace& ws) const;
   template <class F>

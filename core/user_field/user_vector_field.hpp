@@ -24,7 +24,12 @@ class UserVectorField final : public VectorField<G> {
   using typename VectorField<G>::Element;
   using typename VectorField<G>::Vector;
   UserVectorField(G group, std::shared_ptr<const user_field::Program> program)
-      : group_(std::move(group)), program_(std::move(program)) {}
+      : group_(std::move(group)), program_(std::move(program)) {
+    const Eigen::Index n = program_->n();
+    basis_.resize(n * group_.dim(), n);
+    for (int i = 0; i < group_.dim(); ++i)
+      basis_.middleRows(i * n, n) = as_matrix(Element(group_.hat(basis_vector(group_, i))));
+  }
 
   // The program reads t as it runs: an integrator sets each stage's time, a solve leaves it at 0.
   void set_time(double t) override { t_ = t; }
@@ -40,15 +45,17 @@ class UserVectorField final : public VectorField<G> {
     program_->eval_with_tangent(as_matrix(y), t_, as_matrix(Element(group_.tangent(y, dir))), value, tangent);
     return in_algebra(tangent);
   }
-  // dg_y's matrix on G's basis: the program's values once, then one tangent per basis direction.
+  // dg_y's matrix on G's basis: the program's values once, then the tangents along y U for every basis
+  // element U together (tangent(y, U) is y U on G's matrices).
   typename G::Operator dg_matrix(const G& group, const Element& y) const override {
-    std::vector<Eigen::MatrixXd> dys, dgs;
-    dys.reserve(static_cast<std::size_t>(group.dim()));
-    for (int i = 0; i < group.dim(); ++i)
-      dys.push_back(group_.matrix(Element(group_.tangent(y, group_.hat(basis_vector(group, i))))));
-    program_->eval_with_tangents(as_matrix(y), t_, dys, dgs);
+    thread_local Eigen::MatrixXd dgs, block;
+    program_->eval_along(as_matrix(y), t_, basis_, dgs);
+    const Eigen::Index n = program_->n();
     typename G::Operator m = zero_operator(group);
-    for (int i = 0; i < group.dim(); ++i) m.col(i) = in_algebra(dgs[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < group.dim(); ++i) {
+      block = dgs.middleRows(i * n, n);
+      m.col(i) = in_algebra(block);
+    }
     return m;
   }
   // The first value found off the algebra (its defect; 0 while none was).
@@ -74,6 +81,7 @@ class UserVectorField final : public VectorField<G> {
 
   G group_;
   std::shared_ptr<const user_field::Program> program_;
+  Eigen::MatrixXd basis_;  // G's basis of its algebra as matrices, stacked (n dim x n)
   mutable std::atomic<double> defect_{0};
   double t_ = 0;
 };
