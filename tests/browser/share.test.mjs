@@ -103,6 +103,21 @@ test('Solve from a URL: the form, the curl command and the downloads agree with 
   assert.deepEqual(json.request, body);
 });
 
+test('A g(y) with parameters from a URL: the table shows them in MATLAB notation, and the curl command sends them', async () => {
+  const parameters = { J: [[1, 0, 0], [0, 2, 0], [0, 0, 3]], m: [[0.6], [0.8], [0.5]] };
+  const panel = await open('solve', { g: "w = J \\ (y' * m);\ng = [0 -w(3) w(2); w(3) 0 -w(1); -w(2) w(1) 0]",
+    parameters: JSON.stringify(parameters) });
+  assert.equal(await panel.locator('details.folded', { hasText: 'Your own g' }).getAttribute('open'), '');
+  assert.deepEqual(await panel.getByLabel('Parameter value (MATLAB notation)').evaluateAll((xs) => xs.map((x) => x.value)),
+    ['[1 0 0; 0 2 0; 0 0 3]', '[0.6; 0.8; 0.5]']);
+  await panel.getByRole('button', { name: 'Run' }).click();
+  await panel.locator('[data-result="iterations"]').waitFor();
+  const [answer] = await curlAnswers(panel);
+  assert.equal(answer.status, await panel.locator('[data-result="status"] .badge').getAttribute('data-status'));
+  assert.equal(answer.iterations, Number(await panel.locator('[data-result="iterations"]').innerText()));
+  assert.deepEqual((await requestJson(panel)).parameters, parameters);
+});
+
 test('Compare from a URL: one curl command per run, each reproducing its row', async () => {
   const panel = await open('compare', new URLSearchParams([['n', '4'], ['h', '0.25'], ['runs', 'newton-group|exact'],
     ['runs', 'fixed-point|exact']]));

@@ -4,6 +4,7 @@ import { contractNumber, field, folded, number, select, spec, stepSize } from '.
 import { value } from './form.js';
 import { entry } from './catalog.js';
 import { PROBLEMS } from './labels.js';
+import { parameterTable } from './parameters.js';
 
 // n, tol, max_iterations and seed as the server defaults them; the rest are the dashboard's choice.
 export const DEFAULTS = { problem: 'paper-linear', h: 0.5, method: 'newton-group', differential: 'exact',
@@ -17,24 +18,24 @@ export const PROGRAMS = {
     '{"J": [[1,0,0],[0,2,0],[0,0,3]], "m": [[0.6],[0.8],[0.5]]}'],
 };
 
-// "Your g(y)": a program sent as g instead of the problem, its parameters as a JSON object; the button fills
-// the editor with the chosen problem written as a program. Like every field, both travel in the page's URL.
+// "Your g(y)": a program sent as g instead of the problem, its parameters in a small table; the button fills
+// both with the chosen problem written as a program. Like every field, both travel in the page's URL.
 export function programFields() {
-  const text = (name, rows) => el('textarea', { name, rows, spellcheck: 'false', autocomplete: 'off', class: 'code' });
-  const g = text('g', 3);
-  const parameters = text('parameters', 2);
+  const g = el('textarea', { name: 'g', rows: 3, spellcheck: 'false', autocomplete: 'off', class: 'code' });
+  const parameters = parameterTable();
   const fillButton = el('button', { type: 'button' }, 'Edit the problem as a program');
   fillButton.addEventListener('click', () => {
     const problem = fillButton.form.elements.namedItem('problem').value;
-    [g.value, parameters.value] = PROGRAMS[problem] ?? ['', ''];
-    // As if typed: the page's URL keeps the program (shared/share.js).
-    g.dispatchEvent(new Event('input', { bubbles: true }));
+    const hidden = parameters.querySelector('input[name="parameters"]');
+    [g.value, hidden.value] = PROGRAMS[problem] ?? ['', ''];
+    // As if typed: the page's URL keeps the program (shared/share.js), the table shows the parameters.
+    for (const control of [g, hidden]) control.dispatchEvent(new Event('input', { bubbles: true }));
   });
   return folded('Your own g(y)',
     field('g', 'Your g(y) in MATLAB notation (empty: the built-in above)', g,
       "MATLAB notation over y and t (the time when integrating, 0 otherwise), e.g. u = sin(y)*(2*y - 5*y^2); g = u - u'. Errors name the line and column"),
     fillButton,
-    field('parameters', 'Parameters of g (JSON object)', parameters, 'Named numbers and matrices, e.g. {"J": [[1,0,0],[0,2,0],[0,0,3]]}'));
+    parameters);
 }
 
 export function problemFields(d = DEFAULTS) {
