@@ -1,6 +1,7 @@
 // libFuzzer harness over the user-program language (core/user_field): any byte string, read as a program g for
 // n = 1..6 (the first byte), must compile or throw RequestError naming g with a position -- never crash, hang or
-// hit UB -- and a program that compiles must evaluate with its tangent to matrices of the right size.
+// hit UB -- and a program that compiles must evaluate with its tangent, and with the tangents of two directions in
+// one pass (dg_y's matrix), to matrices of the right size.
 #include <Eigen/Dense>
 #include <cstddef>
 #include <cstdint>
@@ -28,5 +29,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Eigen::MatrixXd g, dg;
   program->eval_with_tangent(y, 0.5, Eigen::MatrixXd::Ones(n, n), g, dg);
   if (g.rows() != n || g.cols() != n || dg.rows() != n || dg.cols() != n) std::abort();
+  Eigen::MatrixXd us(2 * n, n), dgs;
+  us << Eigen::MatrixXd::Ones(n, n), Eigen::MatrixXd::Identity(n, n);
+  program->eval_along(y, 0.5, us, dgs);
+  if (dgs.rows() != 2 * n || dgs.cols() != n) std::abort();
   return 0;
 }
