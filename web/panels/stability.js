@@ -162,10 +162,15 @@ export function createStabilityPanel(root, { openSolve }) {
     const methods = last.request.methods;
     const split = methods.length > 1 && width / methods.length < MIN_PANEL;
     const parts = split ? methods.map((m) => [m]) : [methods];
-    // The cells drawn, not run again, with their request beside them for the title (problem, group, solver).
-    const urls = await Promise.all(parts.map((group) => postImage('/api/v1/render/heatmap', { ...last.request, methods: group,
-      sweep: { cells: last.cells.filter((c) => group.includes(c.method)), seconds: last.seconds },
-      metric: value(form, 'metric'), width }, { signal })));
+    // The cells drawn, not run again, with their request beside them for the title (problem, group, solver). One
+    // picture at a time: the server runs only half of its long requests for one client at once (429 beyond), and
+    // a phone's one picture per method, beside a sweep or a redraw still open in another tab, would pass that.
+    const urls = [];
+    for (const group of parts) {
+      urls.push(await postImage('/api/v1/render/heatmap', { ...last.request, methods: group,
+        sweep: { cells: last.cells.filter((c) => group.includes(c.method)), seconds: last.seconds },
+        metric: value(form, 'metric'), width }, { signal }));
+    }
     for (const url of imageUrls) URL.revokeObjectURL(url);
     imageUrls = urls;
     drawnWidth = width;
