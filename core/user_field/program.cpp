@@ -1037,7 +1037,8 @@ void Program::run(const In& y, double t, const In* dy, Workspace& ws) const {
 // f'(a) of the entrywise functions at the values held, for the tangents (sin's and cos's came with the values).
 void Program::form_derivatives(Workspace& ws) const {
   for (std::size_t i = 0; i < code_.size(); ++i)
-    if (code_[i].op == Op::fn && !forms_derivative_with_value(code_[i].fn)) derivative_fn(code_[i].fn, *ws.code[i].x[0], *ws.code[i].out, *ws.code[i].aux);
+    if (code_[i].op == Op::fn && !forms_derivative_with_value(code_[i].fn))
+      derivative_fn(code_[i].fn, *ws.code[i].x[0], *ws.code[i].out, *ws.code[i].aux);
   ws.holds_derivatives = true;
 }
 

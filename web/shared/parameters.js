@@ -2,7 +2,7 @@
 // "[1 0 0; 0 2 0; 0 0 3]", "[0.6; 0.8; 0.5]"). The request's JSON object lives in one hidden field named
 // parameters, which the page's URL keeps (shared/share.js) and the request reads (shared/request.js); the
 // table writes it as it is edited and is drawn again from it when it is set from outside.
-import { el, uid } from './dom.js';
+import { el } from './dom.js';
 
 // A value in MATLAB notation as the request's JSON: a number, or an array of rows. Text that is not a
 // matrix of finite numbers with rows of equal length comes back as it was typed, so that the server names the
@@ -44,8 +44,7 @@ export function parameterTable() {
   };
 
   const row = (name = '', value = '') => {
-    const nameId = uid('parameter-name');
-    const nameInput = el('input', { type: 'text', value: name, id: nameId, autocomplete: 'off', spellcheck: 'false',
+    const nameInput = el('input', { type: 'text', value: name, autocomplete: 'off', spellcheck: 'false',
       class: 'code', 'aria-label': 'Parameter name' });
     const valueInput = el('input', { type: 'text', value, autocomplete: 'off', spellcheck: 'false', class: 'code',
       'aria-label': 'Parameter value (MATLAB notation)' });
