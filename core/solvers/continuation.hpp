@@ -15,7 +15,8 @@
 //   fold        the tangent's tau-component changes sign: the branch turns back at fold_h (interpolated), and no
 //               root continued from z exists beyond it;
 //   at h        when the predictor passes h, the method's own solve at exactly h starts from the predictor there
-//               (the explicit Lie-Euler value when the path starts at (0, 0)); its root is the continued one when
+//               (the explicit Lie-Euler value when the path starts at (0, 0)); when the corrector carries tau past
+//               h instead, from the secant between the last two path points at tau = h; its root is the continued one when
 //               the same contraction and radius tests hold of its iterates. Otherwise the path's corrector at
 //               fixed tau = h computes the continued root and the method starts there; failing that the path goes
 //               on with a shorter step.
@@ -108,7 +109,8 @@ class BranchPath {
       ds = std::min(ds, kMaxPredictorMove / std::max(t.v.norm(), 1e-300));
       if (t.th > 0.0 && x.h + ds * t.th >= h_) {
         const double to_h = (h_ - x.h) / t.th;
-        if (auto r = at_h(x, t, to_h, first)) return finish(std::move(*r));
+        if (auto r = at_h(Point{x.v + to_h * t.v, h_}, to_h * t.v.norm(), PathStep{t.th, to_h}, first))
+          return finish(std::move(*r));
         first = false;
         ds = to_h / 2;
         if (cancellation_requested()) return stopped(x, "cancelled");
@@ -130,6 +132,17 @@ class BranchPath {
         const auto [before, fold_h] = turning_point(x, t, Bracket{0.0, t.th, ds, tn.th, next->point});
         if (fold_h < h_) return fold(before, fold_h);
         ds = (h_ - x.h) / t.th;  // the branch reaches h before it turns: go straight there
+        continue;
+      }
+      if (next->point.h >= h_) {
+        // The corrector carried tau past h although the predictor stayed below it: h lies between x and next,
+        // so the secant between them at tau = h predicts the root there. Accepting next instead would leave
+        // the path beyond h, where no step leads back.
+        const double w = (h_ - x.h) / (next->point.h - x.h);
+        const Point pred{x.v + w * (next->point.v - x.v), h_};
+        if (auto r = at_h(pred, (pred.v - x.v).norm(), PathStep{tn.th, w * ds}, first)) return finish(std::move(*r));
+        first = false;
+        ds /= 2;
         continue;
       }
       record(PathPointKind::path, next->point, tn.th, ds, next->iterations, next->residual, Status::converged);
@@ -262,12 +275,14 @@ class BranchPath {
     return {lo, std::max({lo.h + b.th_lo * zero / 2, lo.h, b.hi.h})};
   }
 
-  // The method's solve at h from the tangent's prediction (or from z, the first time, with first_from_z), then
-  // from the path's own root at h; a result when one of them reached the continued root, or when the method
-  // fails from that root itself (the method's answer at h, which the caller labels).
-  std::optional<SolveResult> at_h(const Point& x, const Tangent& t, double to_h, bool first) {
-    const Point pred{x.v + to_h * t.v, h_};
-    const double move = to_h * t.v.norm();
+  struct PathStep {  // what the path's record of the root at h says of the step that reached it
+    double dh_ds = 0;
+    double ds = 0;
+  };
+  // The method's solve at h from the prediction pred, which moved v by `move` (or from z, the first time, with
+  // first_from_z), then from the path's own root at h; a result when one of them reached the continued root, or
+  // when the method fails from that root itself (the method's answer at h, which the caller labels).
+  std::optional<SolveResult> at_h(const Point& pred, double move, PathStep step, bool first) {
     const double radius = acceptance_radius(move);
     const Element y_pred = group_.times_exp(eq_.z(), pred.v);
     const bool from_z = first && first_from_z_;
@@ -279,7 +294,8 @@ class BranchPath {
     const Tangent fixed_h{zero_vector(group_), 1.0};
     const auto root = correct(pred, fixed_h, move);
     if (!root) return std::nullopt;
-    record(PathPointKind::path, root->point, t.th, to_h, root->iterations, root->residual, Status::converged);
+    record(PathPointKind::path, root->point, step.dh_ds, step.ds, root->iterations, root->residual,
+           Status::converged);
     const Element y_root = group_.times_exp(eq_.z(), root->point.v);
     if (group_.angle(group_.spectral(root->point.v)) >= G::kLogRadius) return beyond_log(root->point);
     SolveResult r = solve_from(y_root);
