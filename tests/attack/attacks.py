@@ -726,6 +726,17 @@ def quietly(fn, *args):
         pass
 
 
+def sigterm_and_wait(process, limit):
+    """SIGTERM, then (exit status or None if still running after limit seconds, seconds waited)."""
+    start = time.monotonic()
+    process.send_signal(signal.SIGTERM)
+    try:
+        rc = process.wait(timeout=limit)
+    except subprocess.TimeoutExpired:
+        rc = None
+    return rc, time.monotonic() - start
+
+
 def sigterm_during_long_work(t, server_bin):
     port = free_port()
     server = start_server(server_bin, port, "--shutdown-grace", "2")
@@ -739,13 +750,7 @@ def sigterm_during_long_work(t, server_bin):
                            "max_iterations": 10000})
         threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body), daemon=True).start()
         time.sleep(1.0)
-        start = time.monotonic()
-        server.send_signal(signal.SIGTERM)
-        try:
-            rc = server.wait(timeout=10.0)
-        except subprocess.TimeoutExpired:
-            rc = None
-        secs = time.monotonic() - start
+        rc, secs = sigterm_and_wait(server, 10.0)
     finally:
         if server.poll() is None:
             server.kill()
@@ -853,7 +858,8 @@ def metrics_only_from_allowed_address(t):
     other = Target(f"http://{t.host}:{t.port}", t.mode, source="127.0.0.2")
     seen = {}
     for method, path in (("GET", "/metrics"), ("HEAD", "/metrics"), ("GET", "/%6detrics"), ("GET", "//metrics"),
-                         ("GET", "/metrics?format=text"), ("GET", "/api/../metrics")):
+                         ("GET", "/metrics?format=text"), ("GET", "/api/../metrics"),
+                         ("GET", f"http://{t.host}:{t.port}/metrics")):
         status, headers, body, _ = other.request(method, path)
         expect(status in (403, 404), f"{method} {path} from 127.0.0.2: {status} {body[:80]!r}")
         if method == "GET":
@@ -1019,13 +1025,7 @@ def container_restarts_dead_server(t, server_bin):
         second = child_running(entry.pid, server_bin)
         expect(second not in (None, first) and back < 8.0, f"no new server {back:.1f} s after the kill")
         worker, answers = long_sweep_in_background()
-        start = time.monotonic()
-        entry.send_signal(signal.SIGTERM)
-        try:
-            rc = entry.wait(timeout=10.0)
-        except subprocess.TimeoutExpired:
-            rc = None
-        drained = time.monotonic() - start
+        rc, drained = sigterm_and_wait(entry, 10.0)
         expect(rc == 0, f"entrypoint after SIGTERM: {'still running after 10 s' if rc is None else f'exit {rc}'}")
         worker.join(timeout=1.0)
         expect(answers, "the sweep in flight at SIGTERM got no answer")

@@ -306,7 +306,7 @@ TEST_F(Routes, DashboardRootAnswersByteRangesAsAStaticFile) {
   ASSERT_TRUE(openapi);
   EXPECT_EQ(openapi->status, 200);
   EXPECT_FALSE(openapi->has_header("Content-Range"));
-  EXPECT_NO_THROW((void)json::parse(openapi->body));
+  EXPECT_TRUE(json::accept(openapi->body));
 }
 
 // The dashboard runs only this origin's scripts and styles, cannot be framed, and its URLs (which hold the
