@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The image's command, under tini: nginx on $LIENEWTON_HOST:$LIENEWTON_PORT (0.0.0.0:8080) in front of one
 # lienewton-server on 127.0.0.1:$LIENEWTON_BACKEND_PORT (8081), the supported deployment
-# (deploy/nginx/lienewton.conf) in one container. /metrics is served to the addresses in LIENEWTON_METRICS_ALLOW (default loopback only).
+# (deploy/nginx/lienewton.conf) in one container. /metrics is served to the addresses in
+# LIENEWTON_METRICS_ALLOW (default loopback only).
 #
 # A server killed by a signal (a crash, the kernel's OOM killer) is started again, after 1 s, doubling up to
 # 16 s while it keeps dying within 30 s of its start; meanwhile nginx answers 502 in the service's JSON

@@ -13,7 +13,7 @@ upstreams=""
 for u in "$@"; do upstreams+="    server $u max_fails=3 fail_timeout=5s;\n"; done
 allowed=""
 for a in ${LIENEWTON_METRICS_ALLOW:-127.0.0.1 ::1}; do
-  [[ $a =~ ^[0-9A-Fa-f.:/]+$ ]] || { echo "make_conf: LIENEWTON_METRICS_ALLOW: not an address or range: $a" >&2; exit 2; }
+  [[ $a =~ ^[0-9A-Fa-f.:/]+$ ]] || { echo "make_conf: LIENEWTON_METRICS_ALLOW: not an address: $a" >&2; exit 2; }
   allowed+="        allow $a;\n"
 done
 sed -e "s/^\(\s*listen\) [^;]*;/\1 $listen;/" \
