@@ -15,6 +15,7 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import urllib.parse
@@ -936,7 +937,6 @@ def start_front(listen_port, upstreams, workdir):
 def dying_replica_not_retried(t):
     # Three replicas that each die mid-answer (the query of death): an API request reaches exactly one of them
     # and its client gets a JSON 502; a static file is tried on at most two.
-    import tempfile
     replicas = DyingReplicas(3)
     workdir = tempfile.mkdtemp(prefix="lienewton-front-")
     port = free_port()
@@ -983,7 +983,6 @@ def container_restarts_dead_server(t, server_bin):
     # The image's entrypoint (deploy/container/entrypoint.sh, laid out as in the image) on loopback: a server
     # killed in the middle of a request costs that request a JSON 502 and is started again within a few
     # seconds; SIGTERM with a long sweep in flight still drains nginx and the server within 10 s, status 0.
-    import tempfile
     root = tempfile.mkdtemp(prefix="lienewton-image-")
     os.chmod(root, 0o755)
     for sub, name, source in (("bin", "entrypoint.sh", "deploy/container/entrypoint.sh"),
