@@ -805,7 +805,7 @@ def dashboard_security_headers(t):
 
 def range_on_dashboard(t):
     # One range: exactly those bytes with their Content-Range (or the whole page, 200). Many ranges of the whole
-    # page (upstream #1766): never more bytes than the page.
+    # page, which cpp-httplib would each copy into one multipart answer: never more bytes than the page.
     _, _, whole, _ = t.request("GET", "/")
     status, headers, data, _ = t.request("GET", "/", headers={"Range": "bytes=0-9"})
     if status == 206:
