@@ -11,6 +11,7 @@ import http.client
 import json
 import os
 import re
+import shutil
 import signal
 import socket
 import subprocess
@@ -762,6 +763,7 @@ def sigterm_during_long_work(t, server_bin):
 
 # ---------------------------------------------------------------- the front as a shield, page headers, ranges
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+NGINX = shutil.which("nginx") or "/usr/sbin/nginx"  # not on a plain user's PATH
 
 
 def split_answer(answer):
@@ -922,7 +924,7 @@ def start_front(listen_port, upstreams, workdir):
     os.chmod(workdir, 0o755)  # nginx's workers (user nobody when started as root) write below it
     subprocess.run(["bash", os.path.join(REPO, "deploy/nginx/make_conf.sh"), workdir, f"127.0.0.1:{listen_port}",
                     *upstreams], check=True)
-    front = subprocess.Popen(["nginx", "-e", os.path.join(workdir, "error.log"), "-p", workdir, "-c",
+    front = subprocess.Popen([NGINX, "-e", os.path.join(workdir, "error.log"), "-p", workdir, "-c",
                               os.path.join(workdir, "nginx.conf")], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     for _ in range(50):
         try:
@@ -992,7 +994,8 @@ def container_restarts_dead_server(t, server_bin):
         os.makedirs(os.path.join(root, sub), exist_ok=True)
         os.symlink(os.path.join(REPO, source), os.path.join(root, sub, name))
     port, backend = free_port(), free_port()
-    env = dict(os.environ, LIENEWTON_HOST="127.0.0.1", LIENEWTON_PORT=str(port), LIENEWTON_BACKEND_PORT=str(backend),
+    env = dict(os.environ, PATH=os.environ.get("PATH", "") + ":" + os.path.dirname(NGINX),
+               LIENEWTON_HOST="127.0.0.1", LIENEWTON_PORT=str(port), LIENEWTON_BACKEND_PORT=str(backend),
                LIENEWTON_WEB_ROOT=os.path.join(REPO, "web"))
     entry = subprocess.Popen(["bash", os.path.join(root, "bin", "entrypoint.sh")], env=env, start_new_session=True,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
