@@ -28,7 +28,7 @@ stop() {
   [ "$alive" = 1 ] && kill -TERM "$server" 2>/dev/null
   kill -QUIT "$front" 2>/dev/null  # graceful: in-flight requests finish
 }
-asked=0
+asked=0 alive=0 front=""
 trap 'asked=1; stop' TERM INT
 
 start_server "$@"
