@@ -2,9 +2,10 @@
 # (scripts/deps.sh build), CMake Release build. Runtime stage: bookworm-slim with only the shared libraries
 # the binaries need (RUNTIME_LIBS, checked against ldd by scripts/check_runtime_libs.sh) and the font the
 # renderer reads (RUNTIME_DATA), nginx in front of the server under tini (RUNTIME_FRONT,
-# deploy/container/entrypoint.sh), the dashboard, a non-root user.
+# deploy/container/entrypoint.sh, which starts a server that crashed again), the dashboard, a non-root user.
 #   docker build -t lienewton .
 #   docker run --rm -p 8080:8080 lienewton
+#   docker run --rm -p 8080:8080 -e LIENEWTON_METRICS_ALLOW=10.0.0.0/8 lienewton   # /metrics beyond loopback
 FROM debian:bookworm AS build
 WORKDIR /src
 COPY scripts/deps.sh scripts/packages-build.txt scripts/packages-test.txt scripts/
@@ -45,4 +46,5 @@ EXPOSE 8080
 HEALTHCHECK --interval=10s --timeout=3s --start-period=5s --retries=3 \
   CMD ["/opt/lienewton/bin/lienewton-server", "--healthcheck"]
 # Arguments after the image name go to lienewton-server. SIGTERM drains the server and nginx, then both exit.
+# A server killed by a signal is started again (the entrypoint's loop); nginx answers a JSON 502 meanwhile.
 ENTRYPOINT ["/usr/bin/tini", "--", "/opt/lienewton/bin/entrypoint.sh"]

@@ -206,6 +206,10 @@ bool has_control_bytes(const httplib::Headers& headers) {
   return false;
 }
 
+// Static files answer a byte range, "/" included (a route only so that the OpenAPI document lists it); API
+// answers are never ranges: under a Range they go out whole, so no range is refused there.
+bool serves_byte_ranges(const RouteSpec* route) { return !route || route->handler == &ApiHandlers::static_file; }
+
 // The handlers' view of a request.
 HttpRequest to_exchange(const httplib::Request& req, std::string client, std::string body = {}) {
   HttpRequest r;
@@ -341,7 +345,7 @@ void HttpServer::install() {
     }
     const BodyKind kind = route ? route->body : BodyKind::none;
     HttpRequest request = to_exchange(req, client_address(req));
-    if (route) request.ranges.clear();  // API answers ignore Range (sent whole), so no range is refused there
+    if (!serves_byte_ranges(route)) request.ranges.clear();
     // A JSON body beyond the cap is left to cpp-httplib, which reads and discards it and answers 413: refused
     // here, it would stay unread, and closing a socket with unread bytes resets the connection before the
     // client has read the answer.
@@ -365,7 +369,7 @@ void HttpServer::install() {
   svr.set_expect_100_continue_handler([this](const httplib::Request& req, httplib::Response& res) {
     const RouteSpec* route = find_route(req.method, req.path);
     HttpRequest request = to_exchange(req, client_address(req));
-    if (route) request.ranges.clear();
+    if (!serves_byte_ranges(route)) request.ranges.clear();
     if (auto rejection = check_body_rules(request, route ? route->body : BodyKind::none, options_.max_body)) {
       metrics_.rejected(rejection->code);
       send(error_response(rejection->status, rejection->code, "", rejection->message), res, false);
@@ -374,12 +378,12 @@ void HttpServer::install() {
     return 100;
   });
 
-  // API answers are never byte ranges: under a Range they go out whole (static files keep their ranges).
   for (const auto& route : route_table()) {
     const std::string pattern = regex_escape(route.path);
     if (route.method == "GET") {
-      svr.Get(pattern, [this, answer = route.handler](const httplib::Request& req, httplib::Response& res) {
-        send(respond(answer, to_exchange(req, client_address(req))), res, !req.ranges.empty());
+      const bool ranges = serves_byte_ranges(&route);
+      svr.Get(pattern, [this, answer = route.handler, ranges](const httplib::Request& req, httplib::Response& res) {
+        send(respond(answer, to_exchange(req, client_address(req))), res, !ranges && !req.ranges.empty());
       });
     } else {
       // Read through a content reader: cpp-httplib's own body reading parses form bodies (what curl -d sends)

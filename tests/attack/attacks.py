@@ -11,10 +11,12 @@ import http.client
 import json
 import os
 import re
+import shutil
 import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import urllib.parse
@@ -726,6 +728,17 @@ def quietly(fn, *args):
         pass
 
 
+def sigterm_and_wait(process, limit):
+    """SIGTERM, then (exit status or None if still running after limit seconds, seconds waited)."""
+    start = time.monotonic()
+    process.send_signal(signal.SIGTERM)
+    try:
+        rc = process.wait(timeout=limit)
+    except subprocess.TimeoutExpired:
+        rc = None
+    return rc, time.monotonic() - start
+
+
 def sigterm_during_long_work(t, server_bin):
     port = free_port()
     server = start_server(server_bin, port, "--shutdown-grace", "2")
@@ -739,19 +752,293 @@ def sigterm_during_long_work(t, server_bin):
                            "max_iterations": 10000})
         threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body), daemon=True).start()
         time.sleep(1.0)
-        start = time.monotonic()
-        server.send_signal(signal.SIGTERM)
-        try:
-            rc = server.wait(timeout=10.0)
-        except subprocess.TimeoutExpired:
-            rc = None
-        secs = time.monotonic() - start
+        rc, secs = sigterm_and_wait(server, 10.0)
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
     expect(rc == 0, f"still running {secs:.1f} s after SIGTERM with --shutdown-grace 2" if rc is None else f"exit {rc}")
     return f"exit 0 after {secs:.1f} s"
+
+
+# ---------------------------------------------------------------- the front as a shield, page headers, ranges
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+NGINX = shutil.which("nginx") or "/usr/sbin/nginx"  # not on a plain user's PATH
+
+
+def split_answer(answer):
+    """(status, lower-case headers, body) of one raw HTTP answer."""
+    head, _, body = answer.partition(b"\r\n\r\n")
+    lines = head.decode(errors="replace").split("\r\n")
+    parts = lines[0].split(" ")
+    status = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else None
+    headers = {}
+    for line in lines[1:]:
+        name, _, value = line.partition(":")
+        headers[name.strip().lower()] = value.strip()
+    return status, headers, body
+
+
+def expect_json_error(status, headers, body, what):
+    expect(status is not None and status >= 400, f"{what}: status {status}")
+    expect(headers.get("content-type", "").startswith("application/json"), f"{what}: {headers.get('content-type')!r}")
+    try:
+        error = json.loads(body)["error"]
+    except (ValueError, KeyError, TypeError):
+        raise Failed(f"{what}: not the service's error document: {body[:120]!r}")
+    expect(set(error) == {"code", "field", "message"}, f"{what}: error members {sorted(error)}")
+
+
+def dashboard_security_headers(t):
+    # Set by the server on its static files, kept by the front: the dashboard runs only its own scripts and
+    # styles, no page may frame it, and its URLs (which hold a user's program) go to this origin only.
+    status, headers, _, _ = t.request("GET", "/")
+    expect(status == 200, f"GET / {status}")
+    csp = headers.get("content-security-policy", "")
+    for directive in ("default-src 'self'", "script-src 'self'", "style-src 'self'", "object-src 'none'",
+                      "base-uri 'none'", "frame-ancestors 'none'"):
+        expect(directive in csp, f"Content-Security-Policy lacks {directive}: {csp!r}")
+    expect("unsafe" not in csp, f"Content-Security-Policy allows unsafe sources: {csp!r}")
+    expect(headers.get("x-frame-options") == "DENY", f"X-Frame-Options {headers.get('x-frame-options')!r}")
+    expect(headers.get("referrer-policy") == "same-origin", f"Referrer-Policy {headers.get('referrer-policy')!r}")
+    expect(headers.get("x-content-type-options") == "nosniff", "no X-Content-Type-Options: nosniff")
+    return "CSP, X-Frame-Options DENY, Referrer-Policy same-origin, nosniff"
+
+
+def range_on_dashboard(t):
+    # One range: exactly those bytes with their Content-Range (or the whole page, 200). Many ranges of the whole
+    # page, which cpp-httplib would each copy into one multipart answer: never more bytes than the page.
+    _, _, whole, _ = t.request("GET", "/")
+    status, headers, data, _ = t.request("GET", "/", headers={"Range": "bytes=0-9"})
+    if status == 206:
+        expect(headers.get("content-range") == f"bytes 0-9/{len(whole)}", f"Content-Range {headers.get('content-range')!r}")
+        expect(data == whole[:10], f"206 body {data[:40]!r}, wanted {whole[:10]!r}")
+    else:
+        expect(status == 200 and data == whole and "content-range" not in headers, f"status {status}, {len(data)} bytes")
+    many = "bytes=" + ",".join(f"0-{len(whole) - 1}" for _ in range(200))
+    multi_status, _, multi, _ = t.request("GET", "/", headers={"Range": many})
+    expect(len(multi) <= len(whole), f"200 ranges: {multi_status} with {len(multi)} bytes for a {len(whole)}-byte page")
+    return f"bytes=0-9: {status} {len(data)} bytes; 200 ranges: {multi_status} {len(multi)} bytes"
+
+
+def no_version_banner(t):
+    # Neither the server nor the front names its software's version, on answers or on errors.
+    answers = {"/": t.request("GET", "/"), "/livez": t.request("GET", "/livez"),
+               "404": t.request("GET", "/no-such-file"),
+               "400": split_answer(t.raw(b"GARBAGE\r\n\r\n", timeout=3.0)) + (0.0,)}
+    for name, (_, headers, body, _) in answers.items():
+        server = headers.get("server", "")
+        expect(not re.search(r"/\s*\d", server), f"{name}: Server: {server}")
+        expect(b"nginx/" not in body and b"<hr><center>" not in body, f"{name}: a banner in the body {body[:120]!r}")
+    return f"Server: {answers['/'][1].get('server', '(none)')}"
+
+
+def front_errors_are_json(t):
+    # What nginx refuses itself, in the service's error format (not its HTML pages): a request line that is not
+    # HTTP, a header beyond its buffers, a URI too long, TRACE, its internal error page asked for directly.
+    close = b"Connection: close\r\n\r\n"
+    cases = {
+        "garbage": b"GARBAGE\r\n\r\n",
+        "big header": b"GET /livez HTTP/1.1\r\nHost: x\r\nX-Big: " + b"a" * 9000 + b"\r\n" + close,
+        "long uri": b"GET /" + b"a" * 40000 + b" HTTP/1.1\r\nHost: x\r\n" + close,
+        "trace": b"TRACE / HTTP/1.1\r\nHost: x\r\n" + close,
+        "error page": b"GET /.front-error HTTP/1.1\r\nHost: x\r\n" + close,
+        "transfer coding": b"POST /api/v1/solve HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: gzip\r\n" + close,
+    }
+    seen = {}
+    for name, payload in cases.items():
+        status, headers, body = split_answer(t.raw(payload, timeout=3.0))
+        expect_json_error(status, headers, body, name)
+        seen[name] = status
+    return f"JSON errors: {seen}"
+
+
+def metrics_only_from_allowed_address(t):
+    # The front serves /metrics to its allowed addresses (loopback 127.0.0.1 by default) only; any spelling of
+    # the path from another address (here 127.0.0.2) is refused with a JSON 403.
+    own = t.request("GET", "/metrics")
+    expect(own[0] == 200 and b"lienewton_" in own[2], f"/metrics from 127.0.0.1: {own[0]}")
+    other = Target(f"http://{t.host}:{t.port}", t.mode, source="127.0.0.2")
+    seen = {}
+    for method, path in (("GET", "/metrics"), ("HEAD", "/metrics"), ("GET", "/%6detrics"), ("GET", "//metrics"),
+                         ("GET", "/metrics?format=text"), ("GET", "/api/../metrics"),
+                         ("GET", f"http://{t.host}:{t.port}/metrics")):
+        status, headers, body, _ = other.request(method, path)
+        expect(status in (403, 404), f"{method} {path} from 127.0.0.2: {status} {body[:80]!r}")
+        if method == "GET":
+            expect_json_error(status, headers, body, path)
+        expect(b"lienewton_" not in body, f"{method} {path}: metrics served")
+        seen[f"{method} {path}"] = status
+    return f"127.0.0.1: 200; 127.0.0.2: {seen}"
+
+
+class DyingReplicas:
+    """Upstreams that read a request's head, send half a status line and close: a replica dying mid-answer.
+    Counts the requests that reach each."""
+
+    def __init__(self, count):
+        self.hits, self.lock, self.stop = [], threading.Lock(), threading.Event()
+        self.listeners = []
+        for _ in range(count):
+            s = socket.socket()
+            s.bind(("127.0.0.1", 0))
+            s.listen(64)
+            s.settimeout(0.2)
+            self.listeners.append(s)
+            threading.Thread(target=self.serve, args=(s,), daemon=True).start()
+        self.addresses = [f"127.0.0.1:{s.getsockname()[1]}" for s in self.listeners]
+
+    def serve(self, listener):
+        while not self.stop.is_set():
+            try:
+                conn, _ = listener.accept()
+            except OSError:
+                continue
+            with conn:
+                conn.settimeout(5.0)
+                data = b""
+                try:
+                    while b"\r\n\r\n" not in data:
+                        chunk = conn.recv(65536)
+                        if not chunk:
+                            break
+                        data += chunk
+                    with self.lock:
+                        self.hits.append(data.split(b"\r\n", 1)[0].decode(errors="replace"))
+                    conn.sendall(b"HTTP/1.1 200 OK\r\nContent-Ty")
+                except OSError:
+                    pass
+
+    def count(self, request_line_start):
+        with self.lock:
+            return sum(1 for h in self.hits if h.startswith(request_line_start))
+
+    def close(self):
+        self.stop.set()
+        for s in self.listeners:
+            s.close()
+
+
+def start_front(listen_port, upstreams, workdir):
+    """nginx with the shipped config (deploy/nginx/make_conf.sh) on 127.0.0.1:listen_port; waits until it listens."""
+    os.chmod(workdir, 0o755)  # nginx's workers (user nobody when started as root) write below it
+    subprocess.run(["bash", os.path.join(REPO, "deploy/nginx/make_conf.sh"), workdir, f"127.0.0.1:{listen_port}",
+                    *upstreams], check=True)
+    front = subprocess.Popen([NGINX, "-e", os.path.join(workdir, "error.log"), "-p", workdir, "-c",
+                              os.path.join(workdir, "nginx.conf")], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    for _ in range(50):
+        try:
+            socket.create_connection(("127.0.0.1", listen_port), timeout=1.0).close()
+            return front
+        except OSError:
+            time.sleep(0.1)
+    front.kill()
+    raise Failed("nginx did not start")
+
+
+def dying_replica_not_retried(t):
+    # Three replicas that each die mid-answer (the query of death): an API request reaches exactly one of them
+    # and its client gets a JSON 502; a static file is tried on at most two.
+    replicas = DyingReplicas(3)
+    workdir = tempfile.mkdtemp(prefix="lienewton-front-")
+    port = free_port()
+    front = start_front(port, replicas.addresses, workdir)
+    own = Target(f"http://127.0.0.1:{port}")
+    seen = {}
+    try:
+        requests = [("GET", "/api/v1/solve/events?problem=rigid-body&n=3&h=0.5", None, 1),
+                    ("GET", "/api/v1/render/heatmap?n=3&h=1", None, 1),
+                    ("POST", "/api/v1/solve", SMALL_SOLVE, 1),
+                    ("GET", "/index.html", None, 2)]
+        for method, path, body, most in requests:
+            status, headers, data, _ = own.request(method, path, body)
+            expect(status == 502, f"{method} {path}: {status}")
+            expect_json_error(status, headers, data, path)
+            hits = replicas.count(f"{method} {path}")
+            expect(1 <= hits <= most, f"{method} {path} reached {hits} dying replicas (at most {most})")
+            seen[path.split("?")[0]] = hits
+    finally:
+        front.terminate()
+        front.wait(timeout=10.0)
+        replicas.close()
+        subprocess.run(["rm", "-rf", workdir], check=False)
+    return f"replicas reached per request: {seen}"
+
+
+def child_running(parent, binary):
+    """The pid of parent's child process running binary, or None."""
+    try:
+        with open(f"/proc/{parent}/task/{parent}/children") as f:
+            children = [int(p) for p in f.read().split()]
+    except OSError:
+        return None
+    for child in children:
+        try:
+            if os.path.realpath(f"/proc/{child}/exe") == os.path.realpath(binary):
+                return child
+        except OSError:
+            pass
+    return None
+
+
+def container_restarts_dead_server(t, server_bin):
+    # The image's entrypoint (deploy/container/entrypoint.sh, laid out as in the image) on loopback: a server
+    # killed in the middle of a request costs that request a JSON 502 and is started again within a few
+    # seconds; SIGTERM with a long sweep in flight still drains nginx and the server within 10 s, status 0.
+    root = tempfile.mkdtemp(prefix="lienewton-image-")
+    os.chmod(root, 0o755)
+    for sub, name, source in (("bin", "entrypoint.sh", "deploy/container/entrypoint.sh"),
+                              ("bin", "lienewton-server", server_bin),
+                              ("nginx", "make_conf.sh", "deploy/nginx/make_conf.sh"),
+                              ("nginx", "lienewton.conf", "deploy/nginx/lienewton.conf")):
+        os.makedirs(os.path.join(root, sub), exist_ok=True)
+        os.symlink(os.path.join(REPO, source), os.path.join(root, sub, name))
+    port, backend = free_port(), free_port()
+    env = dict(os.environ, PATH=os.environ.get("PATH", "") + ":" + os.path.dirname(NGINX),
+               LIENEWTON_HOST="127.0.0.1", LIENEWTON_PORT=str(port), LIENEWTON_BACKEND_PORT=str(backend),
+               LIENEWTON_WEB_ROOT=os.path.join(REPO, "web"))
+    entry = subprocess.Popen(["bash", os.path.join(root, "bin", "entrypoint.sh")], env=env, start_new_session=True,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    front = Target(f"http://127.0.0.1:{port}")
+
+    def long_sweep_in_background():
+        answers = []
+        worker = threading.Thread(target=lambda: answers.append(front.request("POST", "/api/v1/sweep", LONG_SWEEP)),
+                                  daemon=True)
+        worker.start()
+        time.sleep(1.0)
+        return worker, answers
+
+    try:
+        expect(wait_alive(front), "the entrypoint's front did not answer /livez")
+        first = child_running(entry.pid, server_bin)
+        expect(first is not None, "no lienewton-server under the entrypoint")
+        worker, answers = long_sweep_in_background()
+        os.kill(first, signal.SIGKILL)
+        worker.join(timeout=TIMEOUT)
+        expect(answers, "the request in flight got no answer")
+        status, headers, data, _ = answers[0]
+        expect(status == 502, f"request in flight when the server died: {status} {data[:120]!r}")
+        expect_json_error(status, headers, data, "502")
+        start = time.monotonic()
+        while front.livez_seconds(timeout=1.0) is None and time.monotonic() - start < 8.0:
+            time.sleep(0.1)
+        back = time.monotonic() - start
+        second = child_running(entry.pid, server_bin)
+        expect(second not in (None, first) and back < 8.0, f"no new server {back:.1f} s after the kill")
+        worker, answers = long_sweep_in_background()
+        rc, drained = sigterm_and_wait(entry, 10.0)
+        expect(rc == 0, f"entrypoint after SIGTERM: {'still running after 10 s' if rc is None else f'exit {rc}'}")
+        worker.join(timeout=1.0)
+        expect(answers, "the sweep in flight at SIGTERM got no answer")
+        expect(front.livez_seconds(timeout=1.0) is None, "the front still answers after the entrypoint ended")
+    finally:
+        if entry.poll() is None:
+            os.killpg(entry.pid, signal.SIGKILL)
+            entry.wait()
+        subprocess.run(["rm", "-rf", root], check=False)
+    return (f"502 JSON for the request in flight; serving again after {back:.1f} s; SIGTERM with a sweep in flight "
+            f"drained in {drained:.1f} s (it answered {answers[0][0]})")
 
 
 ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field, duplicate_key, deep_nesting,
@@ -765,6 +1052,12 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            bad_continuation, bad_predictor, deadline_inside_continuation, bad_multistart,
            deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work, descriptor_flood, sweep_timeout_ends_sweep]  # direct mode only: they start servers
+# The page's headers, ranges and banner hold with and without the front; the front's own refusals and its
+# /metrics rule only through it; the fake dying replicas and the container's entrypoint start their own nginx
+# (with --via-nginx, where nginx is known to be installed).
+FRONT_ATTACKS = [dashboard_security_headers, range_on_dashboard, no_version_banner]
+NGINX_ATTACKS = [front_errors_are_json, metrics_only_from_allowed_address, dying_replica_not_retried]
+NGINX_PROCESS_ATTACKS = [container_restarts_dead_server]
 
 
 def main():
@@ -775,9 +1068,13 @@ def main():
     ap.add_argument("--only", default="")
     args = ap.parse_args()
     t = Target(args.base, args.mode)
-    attacks = [(a, ()) for a in ATTACKS]
+    attacks = [(a, ()) for a in ATTACKS + FRONT_ATTACKS]
     if args.mode == "direct" and args.server_bin:
         attacks += [(a, (args.server_bin,)) for a in PROCESS_ATTACKS]
+    if args.mode == "nginx":
+        attacks += [(a, ()) for a in NGINX_ATTACKS]
+        if args.server_bin:
+            attacks += [(a, (args.server_bin,)) for a in NGINX_PROCESS_ATTACKS]
     only = {n for n in args.only.split(",") if n}
     failures, skipped, passed = [], 0, 0
     for attack, extra in attacks:

@@ -13,6 +13,7 @@ watchdog(150_000);
 let server; let browser; let page; let base;
 const consoleErrors = [];
 const external = [];
+const cspViolations = [];
 
 before(async () => {
   const { chromium } = await loadPlaywright();
@@ -24,6 +25,10 @@ before(async () => {
   page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
   page.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
   page.on('request', (r) => !/^(blob|data):/.test(r.url()) && !r.url().startsWith(base) && external.push(r.url()));
+  // Whatever the server's Content-Security-Policy refuses (an inline style, an image source) is reported here.
+  await page.exposeFunction('reportCspViolation', (v) => cspViolations.push(v));
+  await page.addInitScript(() => document.addEventListener('securitypolicyviolation',
+    (e) => window.reportCspViolation(`${e.violatedDirective} ${e.blockedURI} ${e.sourceFile}:${e.lineNumber}`)));
 });
 after(stopAll);
 
@@ -66,7 +71,11 @@ test('vendored uPlot matches the pinned npm package', () => {
 });
 
 test('page loads with no console errors and nothing fetched from outside', async () => {
-  await page.goto(base + '/');
+  const response = await page.goto(base + '/');
+  const headers = response.headers();
+  assert.match(headers['content-security-policy'] ?? '', /script-src 'self'; style-src 'self';.*frame-ancestors 'none'/);
+  assert.equal(headers['x-frame-options'], 'DENY');
+  assert.equal(headers['referrer-policy'], 'same-origin');
   await page.locator('#server-state[data-ok="true"]').waitFor();
   assert.deepEqual(consoleErrors, []);
   assert.deepEqual(external, []);
@@ -698,4 +707,5 @@ test('no console errors beyond the deliberate bad request, nothing fetched from 
   const unexpected = consoleErrors.filter((m) => !/status of 4(00|22)/.test(m));
   assert.deepEqual(unexpected, []);
   assert.deepEqual(external, []);
+  assert.deepEqual(cspViolations, [], 'the dashboard did something its Content-Security-Policy forbids');
 });

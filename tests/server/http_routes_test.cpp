@@ -285,6 +285,51 @@ TEST_F(Routes, StaticFilesStayInsideTheWebRoot) {
   EXPECT_EQ(outside->status, 416);
 }
 
+// "/" is a route (the OpenAPI document lists it) but a static file all the same: one range is exactly those
+// bytes with their Content-Range, several are refused, never expanded.
+TEST_F(Routes, DashboardRootAnswersByteRangesAsAStaticFile) {
+  auto c = client();
+  auto whole = c.Get("/");
+  ASSERT_TRUE(whole);
+  ASSERT_EQ(whole->status, 200);
+  auto range = c.Get("/", {{"Range", "bytes=0-9"}});
+  ASSERT_TRUE(range);
+  EXPECT_EQ(range->status, 206);
+  EXPECT_EQ(range->get_header_value("Content-Range"), "bytes 0-9/" + std::to_string(whole->body.size()));
+  EXPECT_EQ(range->body, whole->body.substr(0, 10));
+  auto multi = c.Get("/", {{"Range", "bytes=0-1,3-4"}});
+  ASSERT_TRUE(multi);
+  EXPECT_EQ(multi->status, 416);
+  EXPECT_EQ(json::parse(multi->body)["error"]["code"], "multiple_ranges");
+  // An API answer under a Range is still whole.
+  auto openapi = c.Get("/openapi.json", {{"Range", "bytes=0-9"}});
+  ASSERT_TRUE(openapi);
+  EXPECT_EQ(openapi->status, 200);
+  EXPECT_FALSE(openapi->has_header("Content-Range"));
+  EXPECT_TRUE(json::accept(openapi->body));
+}
+
+// The dashboard runs only this origin's scripts and styles, cannot be framed, and its URLs (which hold the
+// request, a user's program included) are sent as referrer to this origin only.
+TEST_F(Routes, DashboardPagesCarrySecurityHeaders) {
+  auto c = client();
+  for (const char* path : {"/", "/index.html", "/app.js"}) {
+    auto page = c.Get(path);
+    ASSERT_TRUE(page);
+    ASSERT_EQ(page->status, 200) << path;
+    const std::string csp = page->get_header_value("Content-Security-Policy");
+    for (const char* directive : {"default-src 'self'", "script-src 'self'", "style-src 'self'", "object-src 'none'",
+                                  "frame-ancestors 'none'"}) {
+      EXPECT_NE(csp.find(directive), std::string::npos) << path << ": " << csp;
+    }
+    EXPECT_EQ(csp.find("unsafe"), std::string::npos) << csp;
+    EXPECT_EQ(page->get_header_value("X-Frame-Options"), "DENY") << path;
+    EXPECT_EQ(page->get_header_value("Referrer-Policy"), "same-origin") << path;
+    EXPECT_EQ(page->get_header_value("X-Content-Type-Options"), "nosniff") << path;
+    EXPECT_EQ(page->get_header_value_count("Content-Security-Policy"), 1u) << path;
+  }
+}
+
 TEST_F(Routes, StaticFilesRevalidateByETag) {
   auto c = client();
   const auto file = server_->base / "web" / "validated.txt";
