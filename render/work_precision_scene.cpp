@@ -50,7 +50,7 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
   chart.legend = LegendPlace::right;
   const bool tolerance = against_tolerance(result);
   chart.legend_title = tolerance ? "adaptive steps; markers labelled with the tolerance (rtol = atol)"
-                                 : "markers labelled with h; p: fitted order";
+                                 : "markers labelled with h; p: fitted order; grey: not asymptotic, not fitted";
   bool any = false;
   for (std::size_t i = 0; i < result.series.size(); ++i) {
     const WorkPrecisionSeries& s = result.series[i];
@@ -69,6 +69,7 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
       line.x.push_back(p->error);
       line.y.push_back(p->cpu_seconds);
       line.point_labels.push_back(p->tolerance ? fields::format_bound(*p->tolerance) : power_of_two_label(p->h));
+      line.muted.push_back(!tolerance && !p->in_fit);
     }
     any = any || !points.empty();
     chart.series.push_back(std::move(line));
