@@ -119,7 +119,8 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
   std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
   for (int n : req.n) {
     problems.push_back(at_dimension(req.problem, n));
-    problems.back().z = problems.back().start();
+    // heavy-top's start is its parameters' state, which it refuses to be given again as z.
+    if (!problems.back().is(ProblemKind::heavy_top)) problems.back().z = problems.back().start();
   }
 
   const std::size_t per_method = req.n.size() * req.h.size();

@@ -81,21 +81,27 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
   const double ceiling = kScaleFraction * size;
   std::vector<double> h, error;
   std::vector<WorkPrecisionPoint*> usable;
+  int failed = 0, at_floor = 0, too_large = 0;
   for (WorkPrecisionPoint& p : series.points) {
     p.in_fit = false;
-    if (p.status != Status::converged)
+    if (p.status != Status::converged) {
+      ++failed;
       p.excluded = "the run did not converge on the solution's branch (" + std::string(to_string(p.status)) + ")";
-    else if (!reference.y)
+    } else if (!reference.y) {
+      ++failed;
       p.excluded = reference.note;
-    else if (!std::isfinite(p.error))
+    } else if (!std::isfinite(p.error)) {
+      ++failed;
       p.excluded = "the run's result is not finite";
-    else if (p.error <= floor)
+    } else if (p.error <= floor) {
+      ++at_floor;
       p.excluded = "its error is within " + format_number(kFloorFactor) + "x of the reference's accuracy (below " +
                    format_number(floor) + ")";
-    else if (p.error >= ceiling)
+    } else if (p.error >= ceiling) {
+      ++too_large;
       p.excluded = "its error is not small against the solution (at least " + format_number(kScaleFraction) +
                    " ||y_ref|| = " + format_number(ceiling) + "): outside the asymptotic regime";
-    else {
+    } else {
       usable.push_back(&p);
       h.push_back(p.h);
       error.push_back(p.error);
@@ -111,11 +117,19 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
     series.fit_reason = "fitted over " + std::to_string(range.indices.size()) + " points in the asymptotic regime";
     return;
   }
-  for (WorkPrecisionPoint* p : usable)
-    if (p->in_fit) p->in_fit = false, p->excluded = "too few points in the asymptotic regime to fit an order";
+  for (WorkPrecisionPoint* p : usable) {
+    if (!p->in_fit) continue;
+    p->in_fit = false;
+    p->excluded = "too few points in the asymptotic regime to fit an order";
+  }
+  const auto count = [](int k, const char* what) { return k ? ", " + std::to_string(k) + " " + what : std::string(); };
   series.fit_reason = "no order: " + std::to_string(range.indices.size()) + " of " +
-                      std::to_string(series.points.size()) + " points are in the asymptotic regime (at least " +
-                      std::to_string(kMinFitPoints) + " with consistent slopes are needed); smaller h may reach it";
+                      std::to_string(series.points.size()) + " points in the asymptotic regime, at least " +
+                      std::to_string(kMinFitPoints) + " with consistent slopes needed (" +
+                      std::to_string(usable.size() - range.indices.size()) + " with inconsistent slopes" +
+                      count(at_floor, "at the reference's accuracy: larger h would show the order") +
+                      count(too_large, "too large against the solution: smaller h would") + count(failed, "failed") +
+                      ")";
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ ProblemSpec built_in(ProblemKind kind) {
 
 TEST(ProblemDefaults, StabilityMapDefaultsRunForEveryBuiltInProblem) {
   for (ProblemKind kind : kAllProblems) {
-    SweepRequest req{.problem = built_in(kind)};
+    SweepRequest req;
+    req.problem = built_in(kind);
     const SweepRequest full = with_defaults(req);
     EXPECT_NO_THROW(validate(full)) << to_string(kind);
     const bool fixed = kind == ProblemKind::rigid_body || kind == ProblemKind::heavy_top;
@@ -54,7 +55,8 @@ TEST(ProblemDefaults, StepSizesFollowTheTimeScale) {
 #if !defined(LIENEWTON_SANITIZED)
 TEST(ProblemDefaults, WorkPrecisionDefaultsFitNominalOrdersOrSayWhyNot) {
   for (ProblemKind kind : kAllProblems) {
-    WorkPrecisionRequest req{.problem = built_in(kind)};
+    WorkPrecisionRequest req;
+    req.problem = built_in(kind);
     const WorkPrecisionResult res = work_precision(req);
     int fitted = 0;
     for (const WorkPrecisionSeries& s : res.series) {

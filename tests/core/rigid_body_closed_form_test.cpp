@@ -59,6 +59,7 @@ TEST(RigidBodyClosedForm, BodyMomentumFollowsTheJacobiEllipticSolution) {
     return Eigen::Vector3d(inertia.cwiseProduct(omega));
   };
   EXPECT_LE((closed_form(0.0) - m0).norm(), 1e-14) << "the closed form starts at M(0)";
+  EXPECT_GT((closed_form(3.0) - m0).norm(), 0.3) << "and moves far from it by t = 3";
   for (double t_end : {1.0, 3.0}) {
     IntegrateRequest req;
     req.problem.kind = ProblemKind::rigid_body;
