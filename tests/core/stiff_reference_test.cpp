@@ -3,8 +3,9 @@
 //   R' = R hat(w),  J w' = (J w) x w - k vee(skew(R)) - c w + f(t),  f(t) = (0.5 sin 2t, 0.3 cos t, 0.2),
 // J = diag(1, 2, 3), R(0) = exp(hat(0.5, -0.3, 0.8)), w(0) = (1, -2, 0.5), t in [0, 1]. The library's reference
 // (core/reference_solution.hpp) must give a finite global_error there; it is checked against an independent
-// reference computed here: classical RK4 on the ODE in R^9 x R^3 (R a free 3 x 3 matrix), at a step inside RK4's
-// stability interval (h |lambda| = 0.31), its accuracy bounded by its distance from half the steps.
+// reference computed here: classical RK4 on the 7 x 7 matrix ODE's entries (matrix_ode_reference.hpp, R a free 3 x 3
+// matrix), at a step inside RK4's stability interval (h |lambda| = 0.31), its accuracy bounded by its distance
+// from half the steps.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -15,6 +16,7 @@
 #include "core/groups/so3_group.hpp"
 #include "core/integrate.hpp"
 #include "core/work_precision.hpp"
+#include "matrix_ode_reference.hpp"
 
 namespace lienewton {
 namespace {
@@ -25,47 +27,26 @@ constexpr const char* kSpringDamper =
     "f = [0.5*sin(2*t); 0.3*cos(t); 0.2]; dw = (cross(J .* w, w) - k*s - c*w + f) ./ J; "
     "W = [0 -w(3) w(2); w(3) 0 -w(1); -w(2) w(1) 0]; g = [W zeros(3,4); zeros(4,3) [zeros(3) dw; zeros(1,4)]]";
 
-struct State {
-  Eigen::Matrix3d r;
-  Eigen::Vector3d w;
-};
-
-Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return m;
-}
-
-State rate(const State& s, double t) {
-  const Eigen::Vector3d j(1, 2, 3);
-  const Eigen::Matrix3d skew = (s.r - s.r.transpose()) / 2;
-  const Eigen::Vector3d v(skew(2, 1), skew(0, 2), skew(1, 0));
-  const Eigen::Vector3d f(0.5 * std::sin(2 * t), 0.3 * std::cos(t), 0.2);
-  return {s.r * hat(s.w), (j.cwiseProduct(s.w).cross(s.w) - kStiffness * v - kStiffness * s.w + f).cwiseQuotient(j)};
-}
-
-State axpy(const State& s, double a, const State& d) { return {s.r + a * d.r, s.w + a * d.w}; }
-
 Eigen::Matrix3d start_rotation() { return SO3Group{}.exp(Eigen::Vector3d(0.5, -0.3, 0.8)); }
 
-Eigen::MatrixXd as_matrix(const State& s) {
+Eigen::MatrixXd start() {
   Eigen::MatrixXd y = Eigen::MatrixXd::Identity(7, 7);
-  y.topLeftCorner(3, 3) = s.r;
-  y.block(3, 6, 3, 1) = s.w;
+  y.topLeftCorner(3, 3) = start_rotation();
+  y.block(3, 6, 3, 1) = Eigen::Vector3d(1, -2, 0.5);
   return y;
 }
 
-Eigen::MatrixXd rk4(int steps) {
-  const double h = 1.0 / steps;
-  State s{start_rotation(), Eigen::Vector3d(1, -2, 0.5)};
-  for (int k = 0; k < steps; ++k) {
-    const double t = k * h;
-    const State k1 = rate(s, t), k2 = rate(axpy(s, h / 2, k1), t + h / 2), k3 = rate(axpy(s, h / 2, k2), t + h / 2),
-                k4 = rate(axpy(s, h, k3), t + h);
-    s.r += h / 6 * (k1.r + 2 * k2.r + 2 * k3.r + k4.r);
-    s.w += h / 6 * (k1.w + 2 * k2.w + 2 * k3.w + k4.w);
-  }
-  return as_matrix(s);
+// The field as the 7 x 7 algebra element [[hat(w), 0], [0, [[0, dw], [0, 0]]]]: y' = y g(t, y) is R' = R hat(w),
+// w' = dw on the matrix's entries, R free (not kept orthogonal).
+Eigen::MatrixXd field(double t, const Eigen::MatrixXd& y) {
+  const Eigen::Vector3d j(1, 2, 3), w = y.block(3, 6, 3, 1);
+  const Eigen::Matrix3d r = y.topLeftCorner(3, 3), skew = (r - r.transpose()) / 2;
+  const Eigen::Vector3d v(skew(2, 1), skew(0, 2), skew(1, 0));
+  const Eigen::Vector3d f(0.5 * std::sin(2 * t), 0.3 * std::cos(t), 0.2);
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(7, 7);
+  g.topLeftCorner(3, 3) << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  g.block(3, 6, 3, 1) = (j.cwiseProduct(w).cross(w) - kStiffness * v - kStiffness * w + f).cwiseQuotient(j);
+  return g;
 }
 
 IntegrateRequest stiff_request(Integrator integrator, double h) {
@@ -74,7 +55,7 @@ IntegrateRequest stiff_request(Integrator integrator, double h) {
   req.problem.g = kSpringDamper;
   req.problem.parameters["k"] = Eigen::MatrixXd::Constant(1, 1, kStiffness);
   req.problem.parameters["c"] = Eigen::MatrixXd::Constant(1, 1, kStiffness);
-  req.problem.z = as_matrix({start_rotation(), Eigen::Vector3d(1, -2, 0.5)});
+  req.problem.z = start();
   req.integrator = integrator;
   req.h = h;
   req.t_end = 1.0;
@@ -82,7 +63,8 @@ IntegrateRequest stiff_request(Integrator integrator, double h) {
 }
 
 TEST(StiffReference, GlobalErrorIsFiniteAndMatchesAnIndependentReference) {
-  const Eigen::MatrixXd fine = rk4(1 << 15), coarse = rk4(1 << 14);
+  const Eigen::MatrixXd fine = test::matrix_ode_reference_at(field, start(), 1.0, 1 << 15);
+  const Eigen::MatrixXd coarse = test::matrix_ode_reference_at(field, start(), 1.0, 1 << 14);
   const double reference_error = (fine - coarse).norm();
   std::printf("independent RK4 reference: 2^15 and 2^14 steps differ by %.1e\n", reference_error);
   ASSERT_LE(reference_error, 1e-9);
