@@ -13,9 +13,13 @@ namespace lienewton {
 // The rate of the (validated) problem's field at its start point.
 double field_rate(const ProblemSpec& problem);
 
-// kDefaultStepCount step sizes halving from the largest power of two h <= kMaxDefaultStep with h rho <= 1.
+// Step sizes halving from the largest power of two h <= kMaxDefaultStep with h rho <= 1: kDefaultStepCount of them,
+// fewer where a run to t_end would take more than kMaxDefaultRunSteps steps (the heavy top: 2^-10 ... 2^-13, so that
+// every integrator's runs fit a server's step budget), never fewer than kMinDefaultStepCount.
 inline constexpr int kDefaultStepCount = 6;
+inline constexpr int kMinDefaultStepCount = 3;
+inline constexpr double kMaxDefaultRunSteps = 8192;
 inline constexpr double kMaxDefaultStep = 0.25;
-std::vector<double> default_step_sizes(const ProblemSpec& problem);
+std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end);
 
 }  // namespace lienewton

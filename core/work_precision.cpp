@@ -143,7 +143,7 @@ std::vector<WorkPrecisionChoice> default_choices() {
 WorkPrecisionRequest with_defaults(const WorkPrecisionRequest& request) {
   WorkPrecisionRequest req = request;
   if (req.choices.empty()) req.choices = default_choices();
-  if (req.h.empty() && req.tolerances.empty()) req.h = default_step_sizes(req.problem);
+  if (req.h.empty() && req.tolerances.empty()) req.h = default_step_sizes(req.problem, req.t_end);
   return req;
 }
 

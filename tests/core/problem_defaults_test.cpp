@@ -40,10 +40,12 @@ TEST(ProblemDefaults, StabilityMapDefaultsRunForEveryBuiltInProblem) {
 
 // The heavy top spins at 150 rad/s: its steps start where h |omega| is small, not at the rigid body's 2^-2.
 TEST(ProblemDefaults, StepSizesFollowTheTimeScale) {
-  const std::vector<double> body = default_step_sizes(built_in(ProblemKind::rigid_body));
-  const std::vector<double> top = default_step_sizes(built_in(ProblemKind::heavy_top));
+  const std::vector<double> body = default_step_sizes(built_in(ProblemKind::rigid_body), 1.0);
+  const std::vector<double> top = default_step_sizes(built_in(ProblemKind::heavy_top), 1.0);
   ASSERT_EQ(body.size(), static_cast<std::size_t>(kDefaultStepCount));
-  ASSERT_EQ(top.size(), static_cast<std::size_t>(kDefaultStepCount));
+  ASSERT_EQ(top.size(), 4u) << "2^-10 ... 2^-13: at most kMaxDefaultRunSteps steps per run to t = 1";
+  EXPECT_EQ(default_step_sizes(built_in(ProblemKind::heavy_top), 0.125).size(),
+            static_cast<std::size_t>(kDefaultStepCount));
   EXPECT_EQ(body.front(), kMaxDefaultStep);
   const double rate = field_rate(built_in(ProblemKind::heavy_top));
   EXPECT_GE(rate, 150.0) << "at least the spin";
