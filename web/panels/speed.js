@@ -101,12 +101,14 @@ export function createSpeedPanel(root) {
     // Both ends empty: the server's step sizes from the problem's time scale.
     const auto = value(form, 'k_lo') === '' && value(form, 'k_hi') === '';
     const h = auto ? undefined : wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
-    const energyH = value(form, 'energy_h');
+    // An empty box: the step the last run chose (energyStep), so that the shared curl commands repeat it.
+    const energyH = value(form, 'energy_h') === '' ? energyStep : value(form, 'energy_h');
     const energy = !invariantsOf(common).length ? [] : choices.map((choice) => ({ path: '/api/v1/integrate',
-      body: { ...common, ...choice, h: energyH === '' ? undefined : energyH, frames: FRAMES } }));
+      body: { ...common, ...choice, h: energyH, frames: FRAMES } }));
     return [{ path: '/api/v1/work-precision', body: { ...common, choices, ...(h ? { h } : {}) } }, ...energy];
   }
   let last = null;  // { wp, runs } of the last run
+  let energyStep;    // the invariants' runs' h when its box is empty: chosen from the last work-precision run
   const share = sharePanel(form, {
     requests: requestsOf,
     data: () => last && { name: 'work-precision', columns: POINT_COLUMNS,
@@ -132,6 +134,7 @@ export function createSpeedPanel(root) {
     last = null;
     share.refresh();
     await start(async (signal, progress) => {
+      energyStep = undefined;  // chosen again from this run's fit
       const [wpRequest, ...energyRequests] = requestsOf();
       const { choices } = wpRequest.body;
       const sizes = wpRequest.body.h ? `${wpRequest.body.h.length} step sizes` : 'the problem\u2019s step sizes';
@@ -149,7 +152,7 @@ export function createSpeedPanel(root) {
       fitNote.textContent = fitText(wp.series);
       // The invariants' runs at the largest h any order is fitted from (else the smallest h run).
       const fitted = wp.series.flatMap((s) => s.points.filter((p) => p.in_fit).map((p) => p.h));
-      const energyStep = fitted.length ? Math.max(...fitted) : Math.min(...wp.series.flatMap((s) => s.points.map((p) => p.h)));
+      energyStep = fitted.length ? Math.max(...fitted) : Math.min(...wp.series.flatMap((s) => s.points.map((p) => p.h)));
       energyRequests.forEach((r) => { r.body.h ??= energyStep; });
       last = { wp, runs: [] };
       if (!energyRequests.length) {
