@@ -50,7 +50,7 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
   chart.legend = LegendPlace::right;
   const bool tolerance = against_tolerance(result);
   chart.legend_title = tolerance ? "adaptive steps; markers labelled with the tolerance (rtol = atol)"
-                                 : "markers labelled with h; p: fitted order; grey: not asymptotic, not fitted";
+                                 : "markers labelled with h; p: fitted order";
   bool any = false;
   for (std::size_t i = 0; i < result.series.size(); ++i) {
     const WorkPrecisionSeries& s = result.series[i];
