@@ -68,7 +68,7 @@ long steps_for(const Race& race, Integrator integrator, const Eigen::MatrixXd& y
 void Integrators_Race(benchmark::State& state, const Race& race) {
   const Eigen::MatrixXd y_ref = race.reference_steps > 0
                                     ? run(race, Integrator::rkmk4, race.reference_steps).y
-                                    : reference_solution(race.problem, race.problem.start(), race.t_end);
+                                    : reference_solution(race.problem, race.problem.start(), race.t_end).y.value();
   std::vector<long> steps;
   std::string label;
   for (Integrator i : race.integrators) {
@@ -132,7 +132,7 @@ void Integrators_AdaptiveVsFixed(benchmark::State& state, const Race& race) {
   const Integrator integrator = race.integrators.front();
   const Eigen::MatrixXd y_ref = race.reference_steps > 0
                                     ? run(race, Integrator::rkmk4, race.reference_steps).y
-                                    : reference_solution(race.problem, race.problem.start(), race.t_end);
+                                    : reference_solution(race.problem, race.problem.start(), race.t_end).y.value();
   double fixed_error = 0, adaptive_error = 0;
   const long steps = steps_for(race, integrator, y_ref, fixed_error);
   const double tol = tolerance_for(race, integrator, y_ref, adaptive_error);

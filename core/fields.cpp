@@ -201,7 +201,9 @@ std::vector<Field> build() {
                                    "replace z; absent ones keep their defaults",
                     .schema = "HeavyTop",
                     .properties = {top_mass,
-                                   top_vector("inertia", &HeavyTopParams::inertia, "J: principal moments (positive)",
+                                   top_vector("inertia", &HeavyTopParams::inertia,
+                                              "J_c: principal moments about the centre of mass (positive); the "
+                                              "equation takes the pivot's J_c + m(|chi|^2 I - chi chi^T)",
                                               top.inertia, true),
                                    top_vector("center", &HeavyTopParams::center, "chi: the centre of mass in the body",
                                               top.center, false),
@@ -270,7 +272,8 @@ std::vector<Field> build() {
                           std::string("lie-euler")));
   t.push_back(array(Field{.name = "choices", .type = Type::object, .routes = work_precision,
                           .lands = {&WorkPrecisionRequest::choices},
-                          .description = "the (integrator, method, differential) runs, each at every h",
+                          .description = "the (integrator, method, differential) runs, each at every h (default: "
+                                         "every integrator with newton-group and the exact differential)",
                           .schema = "WorkPrecisionChoice",
                           .properties = {enumeration("integrator", kAllIntegrators, 0, {&WorkPrecisionChoice::integrator},
                                                      "Lie group integrator (as integrate's integrator)"),

@@ -65,7 +65,7 @@ struct IntegerField {
 
 inline constexpr NumberField h{"h", 0.0, 1e6, true, kNoDefault, "step size"};
 inline constexpr NumberField tol{"tol", 1e-16, 1.0, false, 1e-13, "absolute tolerance on ||f||"};
-inline constexpr NumberField t_end{"t_end", 0.0, 100.0, true, 1.0, "end time"};
+inline constexpr NumberField t_end{"t_end", 0.0, 1e9, true, 1.0, "end time (capped by --max-t-end)"};
 inline constexpr IntegerField n{"n", 2, 100000, 3, "matrix size N (capped by --max-n)"};  // 1e5: beyond any memory
 inline constexpr IntegerField max_iterations{"max_iterations", 1, 100000, 100, "capped by --max-iterations"};
 inline constexpr IntegerField multistart{"multistart", 0, 10000, 0,

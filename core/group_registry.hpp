@@ -11,6 +11,7 @@
 
 #include "basins.hpp"
 #include "integrate.hpp"
+#include "reference_solution.hpp"
 #include "solve.hpp"
 
 namespace lienewton {
@@ -49,8 +50,10 @@ class GroupFamily {
                              const WorkFarm* farm) const = 0;
   virtual IntegrateResult integrate(const IntegrateRequest& request, const Eigen::MatrixXd& y0,
                                     const StepCallback& on_step) const = 0;
-  virtual Eigen::MatrixXd reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0,
-                                             double t_end) const = 0;
+  virtual ReferenceSolution reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0,
+                                               double t_end) const = 0;
+  // max(||g(y)||, ||dg_y||_F) of the problem's field (time_scale.hpp).
+  virtual double field_rate(const ProblemSpec& problem, const Eigen::MatrixXd& y) const = 0;
 };
 
 // The family a request names; throws RequestError (unprocessable, field "group") listing the registered names.

@@ -42,7 +42,11 @@ IntegrateResult integrate(const IntegrateRequest& req, const StepCallback& on_st
   IntegrateResult res = group_family(req.problem.group).integrate(req, y0, on_step);
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
-    res.global_error = (res.y - reference_solution(req.problem, y0, req.t_end)).norm();
+    const ReferenceSolution ref = reference_solution(req.problem, y0, req.t_end);
+    if (ref.y)
+      res.global_error = (res.y - *ref.y).norm();
+    else
+      res.reason += "; global_error is null: " + ref.note;
     res.reference_seconds = thread_cpu_seconds() - start;
   }
   return res;

@@ -54,7 +54,8 @@ struct IntegrateResult {
   std::vector<StepRecord> steps;
   std::optional<double> global_error;  // ||y_N - y_ref(t_end)||_F, when reference was requested
   InvariantValues initial_invariants{};  // the problem's invariants at y(0)
-  InvariantValues invariant_drifts{};    // max_k |I_k - I_0| / |I_0| over the steps taken (InvariantDrift)
+  InvariantValues invariant_scales{};    // what each drift is relative to (invariant_scales)
+  InvariantValues invariant_drifts{};    // max_k |I_k - I_0| / scale over the steps taken (InvariantDrift)
   double orthogonality_error = 0;      // max over steps of ||y^T y - I||_F
   int total_iterations = 0;            // Newton (or fixed-point) iterations summed over every stage of every step
   int substeps = 0;                    // steps taken, halved ones counted as theirs

@@ -33,20 +33,37 @@ InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd&
     const HeavyTop top{problem.heavy_top};
     out[Invariant::energy] = top.energy(y);
     out[Invariant::vertical_momentum] = top.vertical_momentum(y);
+    if (const auto k = top.symmetry_axis()) out[Invariant::axial_spin] = HeavyTop::omega(y)(*k);
   }
   return out;
 }
 
-InvariantDrift::InvariantDrift(const InvariantValues& initial) : initial_(initial) {
+InvariantValues invariant_scales(const ProblemSpec& problem, const Eigen::MatrixXd& y) {
+  InvariantValues out = invariants_at(problem, y);
+  if (problem.is(ProblemKind::rigid_body)) {
+    out[Invariant::energy] = std::abs(*out[Invariant::energy]);  // kinetic alone: positive wherever M != 0
+  } else if (problem.is(ProblemKind::heavy_top)) {
+    const HeavyTop top{problem.heavy_top};
+    out[Invariant::energy] = top.energy_scale(y);
+    out[Invariant::vertical_momentum] = top.momentum_scale(y);
+    if (out[Invariant::axial_spin]) out[Invariant::axial_spin] = HeavyTop::omega(y).norm();
+  }
+  return out;
+}
+
+InvariantDrift::InvariantDrift(const InvariantValues& initial, const InvariantValues& scales)
+    : initial_(initial), scales_(scales) {
   for (Invariant i : kAllInvariants)
-    if (initial_[i]) drift_[i] = 0.0;
+    if (initial_[i]) {
+      drift_[i] = 0.0;
+      if (!scales_[i] || !(*scales_[i] > 0.0)) scales_[i] = 1.0;  // nothing to compare with: absolute
+    }
 }
 
 void InvariantDrift::add(const InvariantValues& values) {
   for (Invariant i : kAllInvariants) {
     if (!initial_[i] || !values[i]) continue;
-    const double scale = *initial_[i] == 0.0 ? 1.0 : std::abs(*initial_[i]);
-    const double d = std::abs(*values[i] - *initial_[i]) / scale;
+    const double d = std::abs(*values[i] - *initial_[i]) / *scales_[i];
     // A non-finite value is the largest drift there is (std::max would keep the old one against NaN).
     drift_[i] = std::isfinite(d) ? std::max(*drift_[i], d) : std::numeric_limits<double>::infinity();
   }

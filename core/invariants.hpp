@@ -22,22 +22,28 @@ struct InvariantValues {
   bool any() const;
 };
 
-// The invariants a built-in problem reports: rigid-body its energy; heavy-top its energy and vertical angular
-// momentum; the paper's problems none (nor does a user's g).
+// The invariants a built-in problem reports: rigid-body its energy; heavy-top its energy, vertical angular
+// momentum and (a Lagrange top) its axial spin; the paper's problems none (nor does a user's g).
 std::span<const Invariant> invariants_of(ProblemKind kind);
 bool has_invariants(const ProblemSpec& problem);
 InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd& y);
 
-// The drift of each invariant along a run: max_k |I(y_k) - I(y_0)| / |I(y_0)| (not divided where I(y_0) = 0).
+// The size each invariant's drift is relative to, at the start y: one that means something even where the
+// invariant itself is near 0 (a heavy top's vertical momentum): the rigid body's energy; the heavy top's kinetic
+// plus potential energy size, its whole angular momentum |J w|, and |w| for the axial spin (words(Invariant)).
+InvariantValues invariant_scales(const ProblemSpec& problem, const Eigen::MatrixXd& y);
+
+// The drift of each invariant along a run: max_k |I(y_k) - I(y_0)| / scale (invariant_scales; 1 where it is 0).
 class InvariantDrift {
  public:
-  explicit InvariantDrift(const InvariantValues& initial);
+  InvariantDrift(const InvariantValues& initial, const InvariantValues& scales);
   void add(const InvariantValues& values);
   const InvariantValues& initial() const { return initial_; }
+  const InvariantValues& scales() const { return scales_; }
   const InvariantValues& drift() const { return drift_; }
 
  private:
-  InvariantValues initial_, drift_;
+  InvariantValues initial_, scales_, drift_;
 };
 
 }  // namespace lienewton

@@ -143,10 +143,17 @@ struct RigidBody {
 // The heavy top on SO(3) x R^3 (heavy_top_params.hpp), its state the 7 x 7 block-diagonal
 // y = [[R, 0], [0, [[I, w], [0, 1]]]] of SO3xR3Group: y' = y g(y) with
 //   g(y) = [[hat(w), 0], [0, [[0, a], [0, 0]]]],  a = J^-1 ((J w) x w + m chi x (R^T gamma)),
-// i.e. R' = R hat(w), w' = a. Its energy 1/2 w^T J w - m gamma^T R chi is conserved, and so is the vertical
-// angular momentum e3^T R J w when gamma is vertical.
+// i.e. R' = R hat(w), w' = a, J the inertia about the pivot. Its energy 1/2 w^T J w - m gamma^T R chi is conserved,
+// so is the vertical angular momentum e3^T R J w when gamma is vertical, and for a Lagrange top (chi on a principal
+// axis k whose two other moments are equal) the spin w_k about that axis: (J w) x w and chi x (.) have no k part.
 struct HeavyTop {
   HeavyTopParams params;
+  Eigen::Matrix3d inertia;  // J about the pivot
+  Eigen::Matrix3d inverse;  // J^-1
+
+  explicit HeavyTop(const HeavyTopParams& p)
+      : params(p), inertia(pivot_inertia(p)), inverse(inertia.inverse()) {}
+
   template <class M>
   M g(const M& y) const {
     const Eigen::Vector3d w = omega(y);
@@ -158,31 +165,49 @@ struct HeavyTop {
   M dg(const M& y, const M& dir, const M&) const {
     const Eigen::Vector3d w = omega(y), u_r = so3::vee(rotation(dir)), u_w = omega(dir);
     const Eigen::Vector3d b = rotation(y).transpose() * params.gravity;
-    const Eigen::Vector3d jw = params.inertia.cwiseProduct(w);
-    const Eigen::Vector3d da = params.inertia.cwiseProduct(u_w).cross(w) + jw.cross(u_w) +
+    const Eigen::Vector3d da = (inertia * u_w).cross(w) + (inertia * w).cross(u_w) +
                                params.mass * params.center.cross(b.cross(u_r));
-    return embed<M>(u_w, da.cwiseQuotient(params.inertia));
+    return embed<M>(u_w, inverse * da);
   }
   // The same on the coordinates (u_r, u_w): [[0, I], [J^-1 m hat(chi) hat(b), J^-1 (hat(J w) - hat(w) J)]].
   SO3xR3Group::Operator dg_matrix(const SO3xR3Group&, const SO3xR3Group::Element& y) const {
     const Eigen::Vector3d w = omega(y), b = rotation(y).transpose() * params.gravity;
-    const Eigen::Vector3d inverse = params.inertia.cwiseInverse();
     SO3xR3Group::Operator m = SO3xR3Group::Operator::Zero();
     m.topRightCorner<3, 3>().setIdentity();
-    m.bottomLeftCorner<3, 3>() = inverse.asDiagonal() * (params.mass * so3::hat(params.center) * so3::hat(b));
-    m.bottomRightCorner<3, 3>() = inverse.asDiagonal() * (so3::hat(params.inertia.cwiseProduct(w)) -
-                                                          so3::hat(w) * params.inertia.asDiagonal());
+    m.bottomLeftCorner<3, 3>() = inverse * (params.mass * so3::hat(params.center) * so3::hat(b));
+    m.bottomRightCorner<3, 3>() = inverse * (so3::hat(inertia * w) - so3::hat(w) * inertia);
     return m;
   }
   template <class M>
   double energy(const M& y) const {
     const Eigen::Vector3d w = omega(y);
-    return 0.5 * w.dot(params.inertia.cwiseProduct(w)) - params.mass * params.gravity.dot(rotation(y) * params.center);
+    return 0.5 * w.dot(inertia * w) - params.mass * params.gravity.dot(rotation(y) * params.center);
   }
   template <class M>
   double vertical_momentum(const M& y) const {
-    return (rotation(y) * params.inertia.cwiseProduct(omega(y))).z();
+    return (rotation(y) * (inertia * omega(y))).z();
   }
+  // The Lagrange top's symmetry axis k: chi along body axis k alone, the two other moments equal. None otherwise.
+  std::optional<int> symmetry_axis() const {
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      if (params.center(k) != 0.0 && params.center(i) == 0.0 && params.center(j) == 0.0 &&
+          params.inertia(i) == params.inertia(j))
+        return k;
+    }
+    return std::nullopt;
+  }
+  // The scales the invariants' drifts are measured against: the energy's kinetic and potential sizes, the norm of
+  // the angular momentum J w (of which the vertical momentum is one component), and |w|.
+  template <class M>
+  double energy_scale(const M& y) const {
+    const Eigen::Vector3d w = omega(y);
+    return 0.5 * w.dot(inertia * w) + params.mass * params.gravity.norm() * params.center.norm();
+  }
+  template <class M>
+  double momentum_scale(const M& y) const { return (inertia * omega(y)).norm(); }
+  template <class M>
+  static Eigen::Vector3d omega(const M& y) { return y.template block<3, 1>(3, 6); }
   // y(0): the state of (R(0), w(0)).
   Eigen::MatrixXd start() const {
     Eigen::MatrixXd y = Eigen::MatrixXd::Identity(7, 7);
@@ -194,12 +219,10 @@ struct HeavyTop {
  private:
   Eigen::Vector3d acceleration(const Eigen::Matrix3d& r, const Eigen::Vector3d& w) const {
     const Eigen::Vector3d torque = params.mass * params.center.cross(r.transpose() * params.gravity);
-    return (params.inertia.cwiseProduct(w).cross(w) + torque).cwiseQuotient(params.inertia);
+    return inverse * ((inertia * w).cross(w) + torque);
   }
   template <class M>
   static Eigen::Matrix3d rotation(const M& y) { return y.template topLeftCorner<3, 3>(); }
-  template <class M>
-  static Eigen::Vector3d omega(const M& y) { return y.template block<3, 1>(3, 6); }
   // [[hat(w), 0], [0, [[0, a], [0, 0]]]]: the algebra element of (w, a).
   template <class M>
   static M embed(const Eigen::Vector3d& w, const Eigen::Vector3d& a) {

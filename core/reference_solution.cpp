@@ -4,7 +4,7 @@
 
 namespace lienewton {
 
-Eigen::MatrixXd reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end) {
+ReferenceSolution reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end) {
   return group_family(problem.group).reference_solution(problem, y0, t_end);
 }
 

@@ -83,9 +83,12 @@ class FamilyOf final : public GroupFamily {
                             const StepCallback& on_step) const override {
     return Family::with_group(req.problem.n, [&](const auto& g) { return integrate_on(g, req, y0, on_step); });
   }
-  Eigen::MatrixXd reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0,
-                                     double t_end) const override {
+  ReferenceSolution reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0,
+                                       double t_end) const override {
     return Family::with_group(problem.n, [&](const auto& g) { return reference_on(g, problem, y0, t_end); });
+  }
+  double field_rate(const ProblemSpec& problem, const Eigen::MatrixXd& y) const override {
+    return Family::with_group(problem.n, [&](const auto& g) { return field_rate_on(g, problem, y); });
   }
 
  private:

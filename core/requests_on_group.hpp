@@ -239,7 +239,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   res.adaptive = req.adaptive();
   const double cpu_start = thread_cpu_seconds();
   Element y = group.element(y0);
-  InvariantDrift drift(invariants(y));
+  InvariantDrift drift(invariants(y), conserves ? invariant_scales(req.problem, y0) : InvariantValues{});
   // Frames: every frame_stride-th step and the last one. Adaptive steps, whose number is not known ahead, start
   // at every step and double the stride whenever more than 2 frames states are kept (thinning the kept ones).
   int frame_stride = req.frames > 0 ? (res.adaptive ? 1 : std::max(1, steps / req.frames)) : 0;
@@ -292,9 +292,11 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
       const bool keep_going = record(rec, k == steps);
       if (!next) {
         res.status = rec.status;
+        // An explicit step has no branch to leave: it only overflows.
+        const char* what = solves_stages(req.integrator) ? "did not stay on the solution's branch" : "overflowed";
         res.reason = "step " + std::to_string(k) + " (t = " + format_number((k - 1) * h) + " to " +
-                     format_number(k * h) + ") did not stay on the solution's branch, even in " +
-                     std::to_string(1 << kMaxHalvings) + " substeps: " + failure;
+                     format_number(k * h) + ") " + what + ", even in " + std::to_string(1 << kMaxHalvings) +
+                     " substeps: " + failure;
         break;
       }
       if (!keep_going) {
@@ -387,6 +389,7 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
   if (!res.steps.empty()) res.mean_iterations = double(res.total_iterations) / double(res.steps.size());
   res.y = group.matrix(y);
   res.initial_invariants = drift.initial();
+  res.invariant_scales = drift.scales();
   res.invariant_drifts = drift.drift();
   if (res.status == Status::converged && !res.adaptive)
     res.reason = !solves_stages(req.integrator)
@@ -397,13 +400,23 @@ IntegrateResult integrate_on(const G& group, const IntegrateRequest& req, const 
 }
 
 
-// reference_solution(): RKMK4 at kReferenceStepsPerUnit steps per unit of time or more, the steps doubled until two
-// successive solutions agree to kReferenceTolerance (RKMK4's error at the finer is about 1/15 of their distance):
-// a fast field (the heavy top's spin of 150 rad/s) needs a hundred times the steps a slow one does.
+// field_rate(): the field's speed and the size of its differential at y, whichever is larger.
 template <LieGroup G>
-Eigen::MatrixXd reference_on(const G& group, const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end) {
+double field_rate_on(const G& group, const ProblemSpec& problem, const Eigen::MatrixXd& y0) {
   const auto field = make_field(group, problem);
-  const auto run = [&](long long steps) {
+  const typename G::Element y = group.element(y0);
+  return std::max(field->g(y).norm(), field->dg_matrix(group, y).norm());
+}
+
+// reference_solution(): RKMK4 at kReferenceStepsPerUnit steps per unit of time or more, the steps doubled until two
+// successive finite solutions agree to kReferenceTolerance (RKMK4's error at the finer is about 1/15 of their
+// distance): a fast field (the heavy top's spin of 150 rad/s) needs a hundred times the steps a slow one does, a
+// stiff one (an eigenvalue -1e4) the steps that bring h |lambda| inside RKMK4's stability interval; its overflowing
+// runs are skipped. Past kMaxReferenceSteps, rkmk-radau3 (L-stable) refined the same way from 64 steps.
+template <LieGroup G>
+ReferenceSolution reference_on(const G& group, const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end) {
+  const auto field = make_field(group, problem);
+  const auto explicit_run = [&](long long steps) {
     const double h = t_end / static_cast<double>(steps);
     typename G::Element y = group.element(y0);
     for (long long k = 0; k < steps; ++k) {
@@ -412,17 +425,43 @@ Eigen::MatrixXd reference_on(const G& group, const ProblemSpec& problem, const E
     }
     return group.matrix(y);
   };
+  const auto implicit_run = [&](long long steps) -> Eigen::MatrixXd {
+    IntegrateRequest req{.problem = problem, .h = t_end / static_cast<double>(steps), .t_end = t_end,
+                         .integrator = Integrator::rkmk_radau3, .reference = false};
+    req.solver.tol = 1e-12;
+    const IntegrateResult r = integrate_on(group, req, y0, {});
+    if (r.status != Status::converged) return Eigen::MatrixXd::Constant(y0.rows(), y0.cols(), NAN);
+    return r.y;
+  };
+  // Doubles the steps of run from `steps` until two finite solutions agree to tolerance relative or max is reached.
+  const auto refine = [&](const auto& run, long long steps, long long max, double tolerance,
+                          const char* name) -> ReferenceSolution {
+    Eigen::MatrixXd coarse = run(steps);
+    while (steps < max) {
+      steps *= 2;
+      Eigen::MatrixXd fine = run(steps);
+      if (fine.allFinite() && coarse.allFinite()) {
+        const double distance = (fine - coarse).norm();
+        if (distance <= tolerance * std::max(1.0, fine.norm()))
+          return {std::move(fine), distance, std::string(name) + " at " + std::to_string(steps) + " steps"};
+      }
+      coarse = std::move(fine);
+    }
+    return {};
+  };
   // The first comparison is against half the steps, so a slow field costs 1.5 times one run at
   // kReferenceStepsPerUnit, whose solution it returns.
-  long long steps = std::max(32LL, static_cast<long long>(std::ceil(t_end * kReferenceStepsPerUnit / 2)));
-  Eigen::MatrixXd coarse = run(steps);
-  for (;;) {
-    steps *= 2;
-    Eigen::MatrixXd fine = run(steps);
-    const double tolerance = kReferenceTolerance * std::max(1.0, fine.norm());
-    if (!fine.allFinite() || (fine - coarse).norm() <= tolerance || steps >= kMaxReferenceSteps) return fine;
-    coarse = std::move(fine);
-  }
+  const long long first = std::max(32LL, static_cast<long long>(std::ceil(t_end * kReferenceStepsPerUnit / 2)));
+  if (ReferenceSolution r = refine(explicit_run, first, kMaxReferenceSteps, kReferenceTolerance, "rkmk4"); r.y)
+    return r;
+  if (ReferenceSolution r = refine(implicit_run, 64, kMaxImplicitReferenceSteps, kImplicitReferenceTolerance,
+                                   "rkmk-radau3");
+      r.y)
+    return r;
+  return {.note = "no reference solution: rkmk4 up to " + std::to_string(kMaxReferenceSteps) +
+                  " steps and rkmk-radau3 up to " + std::to_string(kMaxImplicitReferenceSteps) +
+                  " steps did not settle (two refinements agreeing to " + format_number(kImplicitReferenceTolerance) +
+                  ")"};
 }
 
 }  // namespace lienewton

@@ -8,7 +8,9 @@
 #include <mutex>
 
 #include "byte_buffer.hpp"
+#include "group_registry.hpp"
 #include "parallel_for.hpp"
+#include "problems.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -20,6 +22,13 @@ std::vector<int> paper_dimensions() {
   std::vector<int> n;
   for (int i = 2; i <= 15; ++i) n.push_back(i);
   return n;
+}
+// The paper's N, or the one n the problem (rigid-body, heavy-top) or its group (SE(3), SO(3) x R^3) is written
+// for: there the map sweeps h alone.
+std::vector<int> default_dimensions(const ProblemSpec& problem) {
+  std::optional<int> only = group_family(problem.group).only_index();
+  if (!only && !problem.g) only = required_index(problem.kind);
+  return only ? std::vector<int>{*only} : paper_dimensions();
 }
 std::vector<double> paper_step_sizes() {
   std::vector<double> h;
@@ -75,7 +84,7 @@ SweepCell cell_from_bytes(const std::string& bytes) {
 }  // namespace
 
 SweepRequest with_defaults(SweepRequest req) {
-  if (req.n.empty()) req.n = paper_dimensions();
+  if (req.n.empty()) req.n = default_dimensions(req.problem);
   if (req.h.empty()) req.h = paper_step_sizes();
   return req;
 }
@@ -110,7 +119,8 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
   std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
   for (int n : req.n) {
     problems.push_back(at_dimension(req.problem, n));
-    problems.back().z = problems.back().start();
+    // heavy-top's start is its parameters' state, which it refuses to be given again as z.
+    if (!problems.back().is(ProblemKind::heavy_top)) problems.back().z = problems.back().start();
   }
 
   const std::size_t per_method = req.n.size() * req.h.size();

@@ -19,7 +19,7 @@ struct SweepRequest {
   ProblemSpec problem{};
   SolverOptions solver{.differential = Differential::finite_difference};
   std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
-  std::vector<int> n;     // default: 2..15 (the paper's)
+  std::vector<int> n;     // default: 2..15 (the paper's), or the one n of a problem or group that fixes it
   std::vector<double> h;  // default: 2^-10 .. 2^10 (21 values)
   int threads = 0;        // 0: all cores
   std::optional<Shard> shard;  // compute only this part of the grid
@@ -49,7 +49,7 @@ struct SweepResult {
 // The grid positions (method-major, then n, then h) of the cells of `shard`, in the order they are claimed.
 std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard);
 
-// Fills in the paper's default grid where n or h are empty.
+// Fills in the default grid where n or h are empty (the paper's; n alone where the problem or group fixes it).
 SweepRequest with_defaults(SweepRequest request);
 void validate(const SweepRequest& request);
 

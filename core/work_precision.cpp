@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 #include "cpu_clock.hpp"
+#include "solvers/iteration_monitor.hpp"
 #include "cancellation.hpp"
 #include "order_fit.hpp"
 #include "parallel_for.hpp"
 #include "reference_solution.hpp"
+#include "time_scale.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -18,12 +21,6 @@ namespace {
 constexpr std::size_t kMaxRuns = 200;
 // A global error below this is rounding's, not the method's: no order can be read from it.
 constexpr double kErrorAtRounding = 1e-12;
-
-std::vector<double> default_step_sizes() {
-  std::vector<double> h;
-  for (int e = -2; e >= -7; --e) h.push_back(std::ldexp(1.0, e));
-  return h;
-}
 
 // The run of choice c at its k-th step size, or (against tolerance) its k-th tolerance.
 IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisionChoice& c, std::size_t k) {
@@ -41,12 +38,6 @@ IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisio
   return r;
 }
 
-// The runs' axis: the tolerances when given, else the step sizes (default_step_sizes() when absent).
-WorkPrecisionRequest with_axis(const WorkPrecisionRequest& request) {
-  WorkPrecisionRequest req = request;
-  if (req.h.empty() && req.tolerances.empty()) req.h = default_step_sizes();
-  return req;
-}
 
 std::size_t runs_per_choice(const WorkPrecisionRequest& req) {
   return req.tolerances.empty() ? req.h.size() : req.tolerances.size();
@@ -68,44 +59,100 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
   return best;
 }
 
-// The observed order (order_fit.hpp) over the honest points in the asymptotic range; each point says whether it
-// is in the fit and, if not, why.
-void fit_order(WorkPrecisionSeries& series) {
+// The observed order (order_fit.hpp) over the points in the asymptotic regime: converged, with an error well above
+// the reference's own (kFloorFactor times its tolerance) and well below the solution's size (kScaleFraction of
+// ||y_ref||), and consecutive slopes that agree (asymptotic_range). Each point says whether it is in the fit and,
+// if not, why; an order needs kMinFitPoints of them, else it is null and fit_reason says why.
+constexpr double kFloorFactor = 100;
+constexpr double kScaleFraction = 5e-2;
+constexpr std::size_t kMinFitPoints = 3;
+
+void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) {
+  series.fitted_order.reset();
   if (!series.points.empty() && series.points.front().tolerance) {
     for (WorkPrecisionPoint& p : series.points)
       p.excluded = "against tolerance: no order is fitted from adaptive runs";
+    series.fit_reason = "against tolerance: no order is fitted from adaptive runs";
     return;
   }
+  const double size = reference.y ? reference.y->norm() : 0.0;
+  const double floor = std::max({kErrorAtRounding, kFloorFactor * reference.accuracy,
+                                 kFloorFactor * kReferenceTolerance * std::max(1.0, size)});
+  const double ceiling = kScaleFraction * size;
   std::vector<double> h, error;
-  std::vector<WorkPrecisionPoint*> honest;
+  std::vector<WorkPrecisionPoint*> usable;
+  int failed = 0, at_floor = 0, too_large = 0;
   for (WorkPrecisionPoint& p : series.points) {
     p.in_fit = false;
-    if (p.status != Status::converged)
+    if (p.status != Status::converged) {
+      ++failed;
       p.excluded = "the run did not converge on the solution's branch (" + std::string(to_string(p.status)) + ")";
-    else if (!(p.error > kErrorAtRounding))
-      p.excluded = "its error is at the level of rounding";
-    else {
-      honest.push_back(&p);
+    } else if (!reference.y) {
+      ++failed;
+      p.excluded = reference.note;
+    } else if (!std::isfinite(p.error)) {
+      ++failed;
+      p.excluded = "the run's result is not finite";
+    } else if (p.error <= floor) {
+      ++at_floor;
+      p.excluded = "its error is within " + format_number(kFloorFactor) + "x of the reference's accuracy (below " +
+                   format_number(floor) + ")";
+    } else if (p.error >= ceiling) {
+      ++too_large;
+      p.excluded = "its error is not small against the solution (at least " + format_number(kScaleFraction) +
+                   " ||y_ref|| = " + format_number(ceiling) + "): outside the asymptotic regime";
+    } else {
+      usable.push_back(&p);
       h.push_back(p.h);
       error.push_back(p.error);
     }
   }
   const AsymptoticRange range = asymptotic_range(h, error);
-  for (std::size_t i = 0; i < honest.size(); ++i) {
-    honest[i]->in_fit = range.contains(i);
-    if (!honest[i]->in_fit) honest[i]->excluded = "outside the asymptotic range of the smaller h";
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    usable[i]->in_fit = range.contains(i);
+    if (!usable[i]->in_fit) usable[i]->excluded = "its slope disagrees with the smaller h's (not yet asymptotic)";
   }
-  series.fitted_order = range.order;
+  if (range.indices.size() >= kMinFitPoints && range.order) {
+    series.fitted_order = range.order;
+    series.fit_reason = "fitted over " + std::to_string(range.indices.size()) + " points in the asymptotic regime";
+    return;
+  }
+  for (WorkPrecisionPoint* p : usable) {
+    if (!p->in_fit) continue;
+    p->in_fit = false;
+    p->excluded = "too few points in the asymptotic regime to fit an order";
+  }
+  const auto count = [](int k, const char* what) { return k ? ", " + std::to_string(k) + " " + what : std::string(); };
+  series.fit_reason = "no order: " + std::to_string(range.indices.size()) + " of " +
+                      std::to_string(series.points.size()) + " points in the asymptotic regime, at least " +
+                      std::to_string(kMinFitPoints) + " with consistent slopes needed (" +
+                      std::to_string(usable.size() - range.indices.size()) + " with inconsistent slopes" +
+                      count(at_floor, "at the reference's accuracy: larger h would show the order") +
+                      count(too_large, "too large against the solution: smaller h would") + count(failed, "failed") +
+                      ")";
 }
 
 }  // namespace
 
+std::vector<WorkPrecisionChoice> default_choices() {
+  std::vector<WorkPrecisionChoice> choices;
+  for (Integrator i : kAllIntegrators) choices.push_back({.integrator = i});
+  return choices;
+}
+
+WorkPrecisionRequest with_defaults(const WorkPrecisionRequest& request) {
+  WorkPrecisionRequest req = request;
+  if (req.choices.empty()) req.choices = default_choices();
+  if (req.h.empty() && req.tolerances.empty()) req.h = default_step_sizes(req.problem, req.t_end);
+  return req;
+}
+
 void validate(const WorkPrecisionRequest& request) {
-  if (request.choices.empty()) validation::invalid("choices", "choices must list at least one choice");
   if (!request.h.empty() && !request.tolerances.empty())
     validation::unprocessable("tolerances", "give either h (fixed steps) or tolerances (adaptive steps), not both");
   for (double tol : request.tolerances) validation::check_tolerance(fields::tolerances, tol, "tolerances");
-  const WorkPrecisionRequest req = with_axis(request);
+  validate(request.problem);  // before its field sets the default steps
+  const WorkPrecisionRequest req = with_defaults(request);
   const std::size_t runs = runs_per_choice(req);
   if (req.choices.size() * runs > kMaxRuns)
     validation::invalid(req.tolerances.empty() ? "h" : "tolerances",
@@ -118,13 +165,12 @@ void validate(const WorkPrecisionRequest& request) {
 
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {
   validate(request);
-  const WorkPrecisionRequest req = with_axis(request);
+  const WorkPrecisionRequest req = with_defaults(request);
   const std::size_t per_choice = runs_per_choice(req);
   const auto start = std::chrono::steady_clock::now();
   WorkPrecisionResult res;
   const double ref_start = thread_cpu_seconds();
-  const Eigen::MatrixXd y_ref =
-      reference_solution(req.problem, req.problem.start(), req.t_end);
+  const ReferenceSolution reference = reference_solution(req.problem, req.problem.start(), req.t_end);
   res.reference_seconds = thread_cpu_seconds() - ref_start;
 
   res.series.resize(req.choices.size());
@@ -145,13 +191,13 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
     p.rejected = run.rejected;
     p.cpu_seconds = min_cpu_seconds(ir, run.cpu_seconds);
     p.status = run.status;
-    p.error = (run.y - y_ref).norm();
+    p.error = reference.y ? (run.y - *reference.y).norm() : std::numeric_limits<double>::quiet_NaN();
     for (const auto& s : run.steps) p.iterations += s.iterations;
     p.substeps = run.substeps;
     p.drifts = run.invariant_drifts;
     std::lock_guard lock(mutex);
     if (--remaining[c] > 0) return true;
-    fit_order(res.series[c]);
+    fit_order(res.series[c], reference);
     return !on_series || on_series(res.series[c]);
   });
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

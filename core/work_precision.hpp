@@ -20,8 +20,8 @@ struct WorkPrecisionRequest {
   ProblemSpec problem{.kind = ProblemKind::rigid_body};
   SolverOptions solver{};
   double t_end = 1.0;
-  std::vector<WorkPrecisionChoice> choices{};
-  std::vector<double> h{};  // default: 2^-2 .. 2^-7
+  std::vector<WorkPrecisionChoice> choices{};  // default: default_choices()
+  std::vector<double> h{};  // default: from the problem's time scale (time_scale.hpp)
   Predictor predictor = Predictor::lie_euler;  // where every stage's iteration starts (IntegrateRequest)
   // Against tolerance instead of h: each choice runs with adaptive steps at rtol = atol = each tolerance, from the
   // first step IntegrateRequest's default h (at most t_end), and at most max_steps tries per run (the server
@@ -47,10 +47,12 @@ struct WorkPrecisionPoint {
 struct WorkPrecisionSeries {
   WorkPrecisionChoice choice;
   std::vector<WorkPrecisionPoint> points;
-  // Least-squares slope of log error vs log h over the points in the asymptotic range (order_fit.hpp): the
-  // observed order. Only honest points enter: runs whose every stage kept the solution's branch. None against
-  // tolerance: adaptive runs' mean steps are no h an order is read from.
+  // Least-squares slope of log error vs log h over the points in the asymptotic regime (work_precision.cpp's
+  // fit_order): the observed order. Only honest points enter: runs whose every stage kept the solution's branch,
+  // errors well between the reference's accuracy and the solution's size. None against tolerance: adaptive runs'
+  // mean steps are no h an order is read from.
   std::optional<double> fitted_order;
+  std::string fit_reason;  // how the order was fitted, or why it is null
 };
 
 struct WorkPrecisionResult {
@@ -59,6 +61,10 @@ struct WorkPrecisionResult {
   double seconds = 0;
 };
 
+// Without choices: every integrator with Newton on the group and the exact differential. Without h or tolerances:
+// the step sizes of the problem's time scale (time_scale.hpp; the problem must be valid).
+std::vector<WorkPrecisionChoice> default_choices();
+WorkPrecisionRequest with_defaults(const WorkPrecisionRequest& request);
 void validate(const WorkPrecisionRequest& request);
 using SeriesCallback = std::function<bool(const WorkPrecisionSeries&)>;
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series = {});

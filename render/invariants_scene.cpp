@@ -16,14 +16,14 @@ Figure invariants_scene(const IntegrateResult& result, const std::string& title,
   chart.title = title;
   // Against the step k (t = k h): the linear axis's margin of half a unit suits counts.
   chart.x = {.label = "step k (t = k h)", .scale = AxisScale::linear, .unit = AxisUnit::plain, .min_step = 1};
-  chart.y = {.label = "|I(t) \u2212 I(0)| / |I(0)|", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
+  chart.y = {.label = "|I(t) \u2212 I(0)| / scale", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0};
   chart.legend = LegendPlace::inside;
   bool any = false;
   std::size_t index = 0;
   for (Invariant i : kAllInvariants) {
     const std::optional<double> initial = result.initial_invariants[i];
     if (!initial) continue;
-    const double scale = *initial == 0.0 ? 1.0 : std::abs(*initial);  // as InvariantDrift divides
+    const double scale = result.invariant_scales[i].value_or(1.0);  // as InvariantDrift divides
     LineSeries line;
     char drift[48];
     std::snprintf(drift, sizeof drift, "  drift %.2e", result.invariant_drifts[i].value_or(0.0));

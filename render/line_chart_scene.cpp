@@ -150,6 +150,9 @@ LineChartLayout layout_line_chart(const LineChart& chart, int width, int height)
   return layout_line_chart(chart, Box{0, 0, static_cast<float>(width), static_cast<float>(height)});
 }
 
+// The grey of muted points: light enough to read as "left out", dark enough on white.
+constexpr Color kMutedGrey{154, 154, 154};
+
 void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayout& l) {
   draw_axes(canvas, chart, l);
   // All polylines first, then all markers, so that a marker's pixels are its series' color.
@@ -158,8 +161,14 @@ void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayo
     for (std::size_t i = 0; i < s.x.size(); ++i) points.push_back(l.project(s.x[i], s.y[i]));
     stroke_series(canvas, points, s.style);
   }
+  // A muted point keeps its series' marker shape in grey.
+  const auto style_at = [](const LineSeries& s, std::size_t i) {
+    SeriesStyle style = s.style;
+    if (i < s.muted.size() && s.muted[i]) style.color = kMutedGrey;
+    return style;
+  };
   for (const auto& s : chart.series) {
-    for (std::size_t i = 0; i < s.x.size(); ++i) draw_marker(canvas, l.project(s.x[i], s.y[i]), s.style);
+    for (std::size_t i = 0; i < s.x.size(); ++i) draw_marker(canvas, l.project(s.x[i], s.y[i]), style_at(s, i));
   }
   std::vector<Box> labelled;  // coinciding series share their labels rather than print them over each other
   const float label_height = Font::instance().pixel_height(TextSize::small);
@@ -173,7 +182,8 @@ void draw_line_chart(Canvas& canvas, const LineChart& chart, const LineChartLayo
       });
       if (covers) continue;
       labelled.push_back(box);
-      canvas.text(s.point_labels[i], p.x, 0.5f * (box.y0 + box.y1), TextSize::small, s.style.color, Align::center);
+      canvas.text(s.point_labels[i], p.x, 0.5f * (box.y0 + box.y1), TextSize::small, style_at(s, i).color,
+                  Align::center);
     }
   }
   if (chart.legend != LegendPlace::none) draw_legend(canvas, chart, l);

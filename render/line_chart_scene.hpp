@@ -27,6 +27,8 @@ struct LineSeries {
   std::vector<double> x, y;  // same length; finite, and positive on a log axis; may be empty (legend only)
   // A small label beside each marker (e.g. its h), or none; a label that would cover one drawn before is left out.
   std::vector<std::string> point_labels;
+  // Points drawn grey (marker and label), e.g. those a fitted order leaves out; empty: none.
+  std::vector<bool> muted;
 };
 
 enum class LegendPlace { none, inside, right };

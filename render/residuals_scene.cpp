@@ -49,8 +49,9 @@ Figure residuals_scene(const std::vector<ResidualRun>& runs, const std::string& 
     if (run.cpu_seconds.size() != run.residual.size() || run.residual.empty()) {
       throw std::invalid_argument("a residual run needs one CPU time per residual, and at least one");
     }
-    LineSeries timed{.label = {}, .style = series_style(i), .x = {}, .y = {}, .point_labels = {}};
-    LineSeries counted{.label = legend_label(run), .style = series_style(i), .x = {}, .y = {}, .point_labels = {}};
+    LineSeries timed{.label = {}, .style = series_style(i), .x = {}, .y = {}, .point_labels = {}, .muted = {}};
+    LineSeries counted{.label = legend_label(run), .style = series_style(i), .x = {}, .y = {}, .point_labels = {},
+                       .muted = {}};
     for (std::size_t n = 0; n < run.residual.size(); ++n) {
       if (!(run.residual[n] > 0) || !std::isfinite(run.residual[n])) continue;
       counted.x.push_back(static_cast<double>(n));

@@ -69,6 +69,7 @@ Figure work_precision_scene(const WorkPrecisionResult& result, const std::string
       line.x.push_back(p->error);
       line.y.push_back(p->cpu_seconds);
       line.point_labels.push_back(p->tolerance ? fields::format_bound(*p->tolerance) : power_of_two_label(p->h));
+      line.muted.push_back(!tolerance && !p->in_fit);
     }
     any = any || !points.empty();
     chart.series.push_back(std::move(line));

@@ -429,6 +429,7 @@ Limits Limits::unlimited() {
   l.max_iterations = INT_MAX;
   l.max_grid_cells = std::numeric_limits<std::size_t>::max();
   l.max_steps = std::numeric_limits<double>::infinity();
+  l.max_t_end = fields::t_end.max;
   l.max_frames = INT_MAX;
   l.max_threads = 1024;
   return l;
@@ -472,7 +473,7 @@ SolveRequest solve_request_from_json(const json& body, const Limits& limits) {
 
 SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   SweepRequest r = read_request<SweepRequest>(body, fields::sweep, limits);
-  // The defaults (paper's grid) count too; n's default (2..15) must also respect the server's N cap.
+  // The defaults count too; n's default (the paper's 2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
     if (n > limits.max_n) fail("n", fields::n.message("n", limits.max_n));
@@ -486,8 +487,17 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   return r;
 }
 
+namespace {
+// The server's cap on t_end (--max-t-end); the CLI's is the core's.
+void check_t_end(double t_end, const Limits& limits) {
+  if (t_end > limits.max_t_end)
+    fail("t_end", "t_end must be at most " + fields::format_bound(limits.max_t_end) + " (the server's --max-t-end)");
+}
+}  // namespace
+
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   IntegrateRequest r = read_request<IntegrateRequest>(body, fields::integrate, limits);
+  check_t_end(r.t_end, limits);
   // Adaptive steps: h is only the first step; the tries are bounded by max_steps, at most the server's step limit.
   if (r.adaptive()) {
     r.max_steps = static_cast<int>(std::min<double>(r.max_steps, limits.max_steps));
@@ -501,7 +511,10 @@ IntegrateRequest integrate_request_from_json(const json& body, const Limits& lim
 
 WorkPrecisionRequest work_precision_request_from_json(const json& body, const Limits& limits) {
   WorkPrecisionRequest r = read_request<WorkPrecisionRequest>(body, fields::work_precision, limits);
-  const double choices = static_cast<double>(std::max<std::size_t>(r.choices.size(), 1));
+  check_t_end(r.t_end, limits);
+  validate(r.problem);  // its time scale gives the default h
+  const WorkPrecisionRequest full = with_defaults(r);
+  const double choices = static_cast<double>(full.choices.size());
   if (!r.tolerances.empty()) {  // adaptive runs share the server's step budget
     const double runs = choices * static_cast<double>(r.tolerances.size());
     if (runs > static_cast<double>(limits.max_grid_cells))
@@ -509,9 +522,8 @@ WorkPrecisionRequest work_precision_request_from_json(const json& body, const Li
     r.max_steps = static_cast<int>(std::max(1.0, std::min<double>(r.max_steps, std::floor(limits.max_steps / runs))));
     return r;
   }
-  // The core's default step sizes are 2^-2 .. 2^-7; count with them when h is absent.
-  std::vector<double> hs = r.h;
-  if (hs.empty()) for (int k = 2; k <= 7; ++k) hs.push_back(std::ldexp(1.0, -k));
+  // The core's defaults (every integrator, the problem's step sizes) count too.
+  const std::vector<double>& hs = full.h;
   double steps = 0;
   for (double h : hs) steps += choices * r.t_end / h;
   if (choices * static_cast<double>(hs.size()) > static_cast<double>(limits.max_grid_cells)) {
@@ -929,6 +941,7 @@ json to_json(const IntegrateResult& r) {
               {"adaptive", r.adaptive},
               {"rejected", r.rejected}};
   add_invariants(out, r.initial_invariants, "initial_", "");
+  add_invariants(out, r.invariant_scales, "", "_scale");
   return add_invariants(out, r.invariant_drifts, "", "_drift");
 }
 
@@ -959,6 +972,7 @@ json to_json(const WorkPrecisionSeries& s) {
   return json{{"choice", to_json(s.choice)},
               {"points", std::move(points)},
               {"fitted_order", optional_number(s.fitted_order)},
+              {"fit_reason", s.fit_reason},
               {"fit_h", std::move(fit_h)}};
 }
 

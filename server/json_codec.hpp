@@ -24,6 +24,7 @@ struct Limits {
   int max_iterations = 10000;
   std::size_t max_grid_cells = 5000;  // sweep: methods x n x h; work-precision: choices x h
   double max_steps = 200000;          // integrate: t_end / h; work-precision: summed over choices and h
+  double max_t_end = 100;             // integrate and work-precision: the longest t_end
   int max_frames = 1000;
   int max_threads = 16;               // sweep: threads one request may ask for (0: all cores)
   static Limits unlimited();

@@ -282,8 +282,9 @@ json schemas() {
                                  {"rejected", integer("adaptive: tries rejected, summed over the steps")}},
                                 {}, false);
   s["IntegrateResult"]["properties"] =
-      invariant_numbers(invariant_numbers(s["IntegrateResult"]["properties"], "initial_", "", "at y(0): "), "", "_drift",
-                        "max over the steps of |I(y_k) - I(y(0))| / |I(y(0))| (not divided where I(y(0)) = 0), I = ");
+      invariant_numbers(invariant_numbers(invariant_numbers(s["IntegrateResult"]["properties"], "initial_", "", "at y(0): "),
+                                          "", "_scale", "the size the drift is relative to (1 where it is 0), of "),
+                        "", "_drift", "max over the steps of |I(y_k) - I(y(0))| / I_scale, I = ");
   s["WorkPrecisionResult"] = object(
       {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object(invariant_numbers(json{{"h", number("")}, {"cpu_seconds", number("")},
@@ -296,8 +297,11 @@ json schemas() {
                                                                {"excluded", json{{"type", "string"}, {"description", "why the fit leaves the point out"}}}}, "", "_drift",
                                                                "the run's drift (as IntegrateResult's) of "), {}, false))},
                                    {"fitted_order", nullable_number("observed order: least-squares slope of log error vs log h "
-                                                                    "over the honest points (every stage on the solution's branch) in the "
-                                                                    "asymptotic range of the smallest h (null with fewer than two)")},
+                                                                    "over the points in the asymptotic regime: converged on the solution's "
+                                                                    "branch, the error 100x above the reference's accuracy and below 0.05 "
+                                                                    "||y_ref||, consecutive slopes agreeing (null with fewer than three; "
+                                                                    "fit_reason says why)")},
+                                   {"fit_reason", json{{"type", "string"}, {"description", "how the order was fitted, or why it is null"}}},
                                    {"fit_h", array_of(number("an h the order is fitted from"))}},
                                   {}, false))},
        {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);

@@ -79,10 +79,11 @@ json openapi_labels(const ServerOptions& options) {
   json integrators = entries(kAllIntegrators);  // rkmk4 is explicit: legends name no method for it
   for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
     integrators[i]["solves_stages"] = solves_stages(kAllIntegrators[i]);
-  // A problem's group when it has one (heavy-top: SOxR) and the invariants its integrations report.
+  // A problem's group and n when it has one (heavy-top: SOxR, n = 3) and the invariants its integrations report.
   json problems = entries(kAllProblems);
   for (std::size_t i = 0; i < std::size(kAllProblems); ++i) {
     if (const auto group = required_group(kAllProblems[i])) problems[i]["group"] = *group;
+    if (const auto n = required_index(kAllProblems[i])) problems[i]["n"] = *n;
     json invariants = json::array();
     for (Invariant v : invariants_of(kAllProblems[i])) invariants.push_back(std::string(to_string(v)));
     problems[i]["invariants"] = std::move(invariants);

@@ -23,6 +23,7 @@ constexpr Flag kFlags[] = {
     {"--max-n", "LIENEWTON_MAX_N", "largest matrix size N accepted (default 64)"},
     {"--max-iterations", "LIENEWTON_MAX_ITERATIONS", "largest max_iterations accepted (default 10000)"},
     {"--max-grid", "LIENEWTON_MAX_GRID", "largest sweep grid (methods x n x h cells) accepted (default 5000)"},
+    {"--max-t-end", "LIENEWTON_MAX_T_END", "longest t_end of integrate and work-precision accepted (default 100)"},
     {"--request-timeout", "LIENEWTON_REQUEST_TIMEOUT", "seconds a request (or stream) may run; then 504 (default 30)"},
     {"--sweep-timeout", "LIENEWTON_SWEEP_TIMEOUT", "seconds a sweep or heatmap render (JSON or stream) may run; then 504 (default 120)"},
     {"--web-root", "LIENEWTON_WEB_ROOT", "directory of the dashboard (default: the repository's web/ next to the binary, or ./web)"},
@@ -73,6 +74,8 @@ std::string apply(ServerOptions& o, std::string_view name, const std::string& va
   } else if (name == "--max-grid") {
     if (!parse_int(value, 1, 100000000, i)) return bad("an integer in [1, 1e8]");
     o.limits.max_grid_cells = static_cast<std::size_t>(i);
+  } else if (name == "--max-t-end") {
+    if (!parse_double(value, 0.001, fields::t_end.max, o.limits.max_t_end)) return bad("a number in [0.001, 1e9]");
   } else if (name == "--request-timeout") {
     if (!parse_double(value, 0.001, 86400, o.request_timeout)) return bad("a number of seconds in [0.001, 86400]");
   } else if (name == "--sweep-timeout") {

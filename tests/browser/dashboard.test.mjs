@@ -456,6 +456,7 @@ test('the work-precision chart has one series per ticked choice', async () => {
   await tab('Speed vs accuracy');
   const panel = page.locator('#speed');
   await panel.locator('input[name="k_lo"]').fill('-5');
+  await panel.locator('input[name="k_hi"]').fill('-2');
   await panel.locator('details.folded > summary', { hasText: 'More options' }).click();
   await panel.locator('input[name="energy_h"]').fill('0.125');
   const ticked = await panel.locator('input[name="choices"]:checked').count();

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Flags: `lienewton solve --n 8 --h 2 --method newton-group` is the solve of the same JSON on stdin (flags typed
 # by the field table: integers, numbers, enum strings, lists), flags override stdin, --pretty prints the same JSON
-# indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` and
-# `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text; heavy-top integrates.
+# indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` (also
+# without choices) and `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text;
+# heavy-top integrates; t_end may exceed the server's cap.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -32,6 +33,13 @@ png "$dir/residuals.png" || { echo "render residuals: not a PNG"; exit 1; }
 echo '{"problem":"rigid-body","h":[0.25,0.125],"choices":[{"integrator":"implicit-euler"}]}' \
   | "$bin" render work-precision --width 480 --height 320 > "$dir/wp.png"
 png "$dir/wp.png" || { echo "render work-precision: not a PNG"; exit 1; }
+# Without choices it takes the defaults GET and POST take (every integrator), not a 400.
+"$bin" render work-precision --problem rigid-body --h 0.25,0.125 --t-end 0.5 < /dev/null > "$dir/wp-defaults.png"
+png "$dir/wp-defaults.png" || { echo "render work-precision without choices: not a PNG"; exit 1; }
+# The CLI takes a t_end beyond the server's cap (--max-t-end, 100 by default).
+"$bin" integrate --problem rigid-body --integrator rkmk4 --h 0.5 --t-end 200 < /dev/null > "$dir/long.json"
+jq -e '.status == "converged" and (.steps | length) == 400' "$dir/long.json" > /dev/null \
+  || { echo "integrate t_end 200: $(head -c 300 "$dir/long.json")"; exit 1; }
 "$bin" render heatmap --methods newton-group --n 3,4 --h 1,2 --format svg < /dev/null > "$dir/heatmap.svg"
 grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' "$dir/heatmap.svg" || { echo "render heatmap --format svg: not SVG"; exit 1; }
 grep -q '>Where each method converges: paper-linear on SO(N)</text>' "$dir/heatmap.svg" || { echo "SVG without its title"; exit 1; }

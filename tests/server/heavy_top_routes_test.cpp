@@ -32,6 +32,14 @@ TEST_F(HeavyTopRoutes, IntegrateReportsTheInvariantsOfTheReturnedStates) {
   ASSERT_EQ(r["steps"].size(), 16u);
   ASSERT_EQ(r["frames"].size(), 17u);
   const double e0 = energy(matrix_from_rows(r["frames"][0])), l0 = momentum(matrix_from_rows(r["frames"][0]));
+  // The drifts' scales: the kinetic plus potential energy's size and the whole angular momentum |J w(0)|.
+  const Eigen::Vector3d jw0 = test::kHeavyTopInertia.cwiseProduct(test::kHeavyTopOmega0);
+  const double e_scale = 0.5 * test::kHeavyTopOmega0.dot(jw0) + 15.0 * 9.81, l_scale = jw0.norm();
+  EXPECT_NEAR(r["energy_scale"].get<double>(), e_scale, 1e-12 * e_scale);
+  EXPECT_NEAR(r["vertical_momentum_scale"].get<double>(), l_scale, 1e-12 * l_scale);
+  // The Lagrange top's spin about its axis, body omega_y = 150, is kept by every step to rounding.
+  EXPECT_EQ(r["initial_axial_spin"].get<double>(), 150.0);
+  EXPECT_LE(r["axial_spin_drift"].get<double>(), 1e-13);
   EXPECT_NEAR(r["initial_energy"].get<double>(), e0, 1e-12 * std::abs(e0));
   EXPECT_NEAR(r["initial_vertical_momentum"].get<double>(), l0, 1e-12 * std::abs(l0));
   double de = 0, dl = 0;
@@ -39,8 +47,8 @@ TEST_F(HeavyTopRoutes, IntegrateReportsTheInvariantsOfTheReturnedStates) {
     const Eigen::MatrixXd y = matrix_from_rows(r["frames"][k]);
     EXPECT_NEAR(r["steps"][k - 1]["energy"].get<double>(), energy(y), 1e-12 * std::abs(e0));
     EXPECT_NEAR(r["steps"][k - 1]["vertical_momentum"].get<double>(), momentum(y), 1e-12 * std::abs(l0));
-    de = std::max(de, std::abs(energy(y) - e0) / std::abs(e0));
-    dl = std::max(dl, std::abs(momentum(y) - l0) / std::abs(l0));
+    de = std::max(de, std::abs(energy(y) - e0) / e_scale);
+    dl = std::max(dl, std::abs(momentum(y) - l0) / l_scale);
   }
   EXPECT_NEAR(r["energy_drift"].get<double>(), de, 1e-12 + 1e-9 * de);
   EXPECT_NEAR(r["vertical_momentum_drift"].get<double>(), dl, 1e-12 + 1e-9 * dl);
@@ -105,12 +113,42 @@ TEST_F(HeavyTopRoutes, TheCatalogNamesTheTopsGroupAndInvariants) {
   for (const json& p : doc["x-lienewton"]["enums"]["problem"])
     if (p["value"] == "heavy-top") top = p;
   EXPECT_EQ(top["group"], "SOxR");
-  EXPECT_EQ(top["invariants"], json::array({"energy", "vertical_momentum"}));
-  EXPECT_EQ(doc["x-lienewton"]["enums"]["invariant"].size(), 2u);
+  EXPECT_EQ(top["n"], 3);
+  EXPECT_EQ(top["invariants"], json::array({"energy", "vertical_momentum", "axial_spin"}));
+  EXPECT_EQ(doc["x-lienewton"]["enums"]["invariant"].size(), 3u);
   const json& heavy = doc["components"]["schemas"]["HeavyTop"]["properties"];
   EXPECT_EQ(heavy["mass"]["default"], 15.0);
   EXPECT_EQ(heavy["mass"]["minimum"], 0.0);
   EXPECT_TRUE(doc["components"]["schemas"]["IntegrateResult"]["properties"].contains("vertical_momentum_drift"));
+}
+
+// The defaults of the routes that sweep or time the top: the stability map sweeps h alone at the top's n = 3
+// (no "n must be 3, got 2"), and work-precision without choices or h runs every integrator at steps from the top's
+// time scale, each order nominal within 0.2 or null with its reason.
+TEST_F(HeavyTopRoutes, DefaultsComeFromTheTop) {
+  const json map = post("/api/v1/sweep", R"({"problem":"heavy-top","group":"SOxR","h":[0.25,1]})");
+  ASSERT_EQ(map["cells"].size(), 6u) << map.dump();
+  for (const json& cell : map["cells"]) EXPECT_EQ(cell["n"], 3);
+  const json wp = post("/api/v1/work-precision", R"({"problem":"heavy-top","group":"SOxR","t_end":0.015625})");
+  ASSERT_EQ(wp["series"].size(), 9u);
+  for (const json& s : wp["series"]) {
+    ASSERT_EQ(s["points"].size(), 6u) << "at t_end = 2^-6 the runs are short enough for all six";
+    EXPECT_EQ(s["points"][0]["h"], 0.0009765625) << "2^-10: h |omega| = 0.15, h rho <= 1";
+    if (s["fitted_order"].is_null()) {
+      EXPECT_FALSE(s["fit_reason"].get<std::string>().empty()) << s.dump();
+    } else {
+      const std::string integrator = s["choice"]["integrator"];
+      const int nominal = order_of(*integrator_from_string(integrator));
+      EXPECT_NEAR(s["fitted_order"].get<double>(), nominal, 0.2) << integrator;
+    }
+  }
+  // The POST picture without choices takes the same defaults as the GET one.
+  auto png = client().Post("/api/v1/render/work-precision",
+                           R"({"problem":"rigid-body","t_end":0.25,"h":[0.0625,0.03125],"width":320,"height":240})",
+                           "application/json");
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->status, 200) << png->body;
+  EXPECT_EQ(png->body.substr(1, 3), "PNG");
 }
 
 TEST_F(HeavyTopRoutes, BadParametersAre422NamingTheField) {
@@ -139,7 +177,9 @@ TEST_F(HeavyTopRoutes, BadParametersAre422NamingTheField) {
   p.mass = 1;
   p.gravity = {0, 0, -1};
   const Eigen::Vector3d w = y.block(3, 6, 3, 1);
-  const double e = 0.5 * w.dot(p.inertia.cwiseProduct(w)) - p.mass * p.gravity.dot(y.topLeftCorner(3, 3) * p.center);
+  // About the pivot: the parallel-axis shift m (|chi|^2 I - chi chi^T) of chi = e_y adds m to the x and z moments.
+  const Eigen::Vector3d j = p.inertia + p.mass * Eigen::Vector3d(1, 0, 1);
+  const double e = 0.5 * w.dot(j.cwiseProduct(w)) - p.mass * p.gravity.dot(y.topLeftCorner(3, 3) * p.center);
   EXPECT_NEAR(light["steps"].back()["energy"].get<double>(), e, 1e-12 * std::abs(e));
 }
 

@@ -130,9 +130,11 @@ TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
   for (const char* field : {"h", "cpu_seconds", "error", "status", "iterations"}) {
     EXPECT_TRUE(w["series"][0]["points"][0].contains(field)) << field;
   }
-  // Two converged points: the observed order is their slope (about 1 and 2 at these h).
-  EXPECT_NEAR(w["series"][0]["fitted_order"].get<double>(), 1.0, 0.2);
-  EXPECT_NEAR(w["series"][1]["fitted_order"].get<double>(), 2.0, 0.3);
+  // Two converged points show no consistent slopes: no order, and the reason says so.
+  for (const json& s : w["series"]) {
+    EXPECT_TRUE(s["fitted_order"].is_null()) << s.dump();
+    EXPECT_NE(s["fit_reason"].get<std::string>().find("at least 3"), std::string::npos) << s.dump();
+  }
 }
 
 TEST_F(Routes, RenderFramesAndHeatmap) {

@@ -162,7 +162,15 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(integrate_failure(R"({"linear_solver":"qr"})").field, "linear_solver");
   EXPECT_EQ(integrate_failure(R"({"frames":-1})").field, "frames");
   EXPECT_EQ(integrate_failure(R"({"h":1e-6,"t_end":100})").field, "h");  // 1e8 steps
-  EXPECT_EQ(integrate_failure(R"({"t_end":1000})").field, "t_end");  // beyond the core's 100
+  // The server caps t_end (--max-t-end, default 100); the CLI's limits take any the core does (up to 1e9).
+  EXPECT_EQ(integrate_failure(R"({"t_end":1000})").field, "t_end");
+  try {
+    integrate_request_from_json(parse_body(R"({"t_end":1000})"), Limits{});
+  } catch (const RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find("--max-t-end"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(integrate_request_from_json(parse_body(R"({"t_end":1000,"h":0.5})"), Limits::unlimited()).t_end, 1000);
+  EXPECT_EQ(integrate_failure(R"({"t_end":2e9})").field, "t_end");  // beyond the core's 1e9
   const auto w = work_precision_request_from_json(
       parse_body(R"({"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"}],"h":[0.1,0.05]})"),
       Limits{});
@@ -174,6 +182,10 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(wp_failure(R"({"choices":[{"method":"x"}]})").field, "choices[0].method");
   EXPECT_EQ(wp_failure(R"({"choices":[{"solver":"x"}]})").field, "choices[0].solver");
   EXPECT_EQ(wp_failure(R"({"choices":[]})").field, "choices");
+  // Without choices and h: every integrator at the problem's default steps, counted against the server's limits.
+  const auto defaults = with_defaults(work_precision_request_from_json(parse_body(R"({"problem":"rigid-body"})"), Limits{}));
+  EXPECT_EQ(defaults.choices.size(), std::size(kAllIntegrators));
+  EXPECT_EQ(defaults.h.size(), 6u);
 }
 
 // Every request that runs solves takes the stopping rule; a bad value is a 400/422 naming the field.

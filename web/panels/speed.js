@@ -28,10 +28,19 @@ function choiceLabel({ integrator, method, differential }) {
   return `${label(INTEGRATORS, integrator)} \u00b7 ${m.short}${d}`;
 }
 
-// The legend entry: the choice and its fitted order p (slope of log error vs log h).
+// The legend entry: the choice and its fitted order p (slope of log error vs log h), or "no order" (the fit's
+// reason is in the note under the chart).
 function seriesLabel(s) {
   const p = s.fitted_order;
-  return `${choiceLabel(s.choice)}${p === null || p === undefined ? '' : ` (p \u2248 ${p.toFixed(2)})`}`;
+  return `${choiceLabel(s.choice)}${p === null || p === undefined ? ' (no order)' : ` (p \u2248 ${p.toFixed(2)})`}`;
+}
+
+// Per series without an order, why: the server's fit_reason.
+function fitText(series) {
+  const none = series.filter((s) => s.fitted_order === null || s.fitted_order === undefined);
+  if (!none.length) return 'Every order is fitted over points in the asymptotic regime; grey markers are left out of the fit.';
+  return `Grey markers are left out of the fit (hover one for why). ${none.map((s) => `${choiceLabel(s.choice)}: `
+    + `${s.fit_reason}`).join('; ')}.`;
 }
 
 const ROWS = entries('integrator').flatMap((i) => entries('method').map((m) => ({ key: `${i.value}|${m.value}`,
@@ -46,11 +55,13 @@ export function createSpeedPanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Work-precision request' },
     select('problem', 'Problem', PROBLEMS, 'rigid-body'),
     programFields(),
-    range('h', 'log\u2082 h of the step sizes', ['k_lo', -7], ['k_hi', -2], 'h = 2\u1d4f for each whole k'),
+    range('h', 'log\u2082 h of the step sizes', ['k_lo', ''], ['k_hi', ''],
+      'h = 2\u1d4f for each whole k; both empty: six steps from the problem\u2019s time scale'),
     folded('More options: N, t_end, invariants plot, tolerance, seed',
       contractNumber('WorkPrecisionRequest', 'n', 'Dimension N'),
       contractNumber('WorkPrecisionRequest', 't_end', 'End time t_end'),
-      number('energy_h', 'Step size h of the invariants plot', 0.0625, 'Problems with invariants: rigid-body, heavy-top'),
+      number('energy_h', 'Step size h of the invariants plot', '',
+        'Problems with invariants: rigid-body, heavy-top; empty: the largest h fitted in the work-precision run'),
       contractNumber('WorkPrecisionRequest', 'tol', 'Tolerance'),
       contractNumber('WorkPrecisionRequest', 'max_iterations', 'Max iterations'),
       contractNumber('WorkPrecisionRequest', 'seed', 'Seed')),
@@ -65,6 +76,7 @@ export function createSpeedPanel(root) {
     el('div', { class: 'chart', id: `${i.value}-chart` })]));
   const wpHover = el('p', { class: 'hint', id: 'work-precision-hover', 'aria-live': 'polite' });
   const noiseNote = el('p', { class: 'hint', id: 'work-precision-noise' });
+  const fitNote = el('p', { class: 'hint', id: 'work-precision-fit' });
   // Per invariant: its chart and the sentence naming curves drawn over each other.
   const coincideNotes = Object.fromEntries(entries('invariant').map((i) => [i.value,
     el('p', { class: 'hint', id: `${i.value}-coincide` })]));
@@ -86,12 +98,17 @@ export function createSpeedPanel(root) {
     if (!choices.length) throw new ApiError('Tick at least one choice.', { field: 'choices' });
     const common = { ...problemOf(form), n: value(form, 'n'), t_end: value(form, 't_end'),
       tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'), seed: value(form, 'seed') };
-    const h = wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
+    // Both ends empty: the server's step sizes from the problem's time scale.
+    const auto = value(form, 'k_lo') === '' && value(form, 'k_hi') === '';
+    const h = auto ? undefined : wholeRange(form, 'k_lo', 'k_hi', 'k').reverse().map((k) => 2 ** k);
+    // An empty box: the step the last run chose (energyStep), so that the shared curl commands repeat it.
+    const energyH = value(form, 'energy_h') === '' ? energyStep : value(form, 'energy_h');
     const energy = !invariantsOf(common).length ? [] : choices.map((choice) => ({ path: '/api/v1/integrate',
-      body: { ...common, ...choice, h: value(form, 'energy_h'), frames: FRAMES } }));
-    return [{ path: '/api/v1/work-precision', body: { ...common, choices, h } }, ...energy];
+      body: { ...common, ...choice, h: energyH, frames: FRAMES } }));
+    return [{ path: '/api/v1/work-precision', body: { ...common, choices, ...(h ? { h } : {}) } }, ...energy];
   }
   let last = null;  // { wp, runs } of the last run
+  let energyStep;    // the invariants' runs' h when its box is empty: chosen from the last work-precision run
   const share = sharePanel(form, {
     requests: requestsOf,
     data: () => last && { name: 'work-precision', columns: POINT_COLUMNS,
@@ -104,31 +121,39 @@ export function createSpeedPanel(root) {
       + `x is the global error at t_end, y the solver\u2019s own CPU time (cpu_seconds), the median of ${REPEATS} runs `
       + '(hover a marker for its range), as in the server\u2019s work-precision PNG. p is the fitted order (slope of log error against log h). Click a legend entry to hide '
       + 'or show its line.'),
-    wpBox, wpHover, noiseNote, share.element, ...Object.values(invariantFigs), tableBox, trajectory.element));
+    wpBox, wpHover, fitNote, noiseNote, share.element, ...Object.values(invariantFigs), tableBox, trajectory.element));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
     e.preventDefault();
     Object.values(invariantFigs).forEach((fig) => { fig.hidden = true; });
     noiseNote.textContent = '';
+    fitNote.textContent = '';
     tableBox.replaceChildren();
     trajectory.hide();
     last = null;
     share.refresh();
     await start(async (signal, progress) => {
+      energyStep = undefined;  // chosen again from this run's fit
       const [wpRequest, ...energyRequests] = requestsOf();
-      const { choices, h } = wpRequest.body;
-      live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes\u2026`;
+      const { choices } = wpRequest.body;
+      const sizes = wpRequest.body.h ? `${wpRequest.body.h.length} step sizes` : 'the problem\u2019s step sizes';
+      live.textContent = `Timing ${choices.length} choices at ${sizes}\u2026`;
       // The same request REPEATS times: each point's CPU time is the median of its runs, with their range.
       const repeats = [];
       for (let k = 0; k < REPEATS; k += 1) {
         repeats.push(await postJSON(wpRequest.path, wpRequest.body, { signal }));
-        live.textContent = `Timing ${choices.length} choices at ${h.length} step sizes: run ${k + 1} of ${REPEATS} done\u2026`;
+        live.textContent = `Timing ${choices.length} choices at ${sizes}: run ${k + 1} of ${REPEATS} done\u2026`;
       }
       const wp = medianOf(repeats);
       const timed = `work precision ${REPEATS} times in ${fmtSeconds(repeats.reduce((a, r) => a + r.seconds, 0))}`;
       workPrecisionChart(wpBox, wp.series.map((s) => ({ label: seriesLabel(s), points: s.points })), wpHover);
       noiseNote.textContent = noiseText(wp.series);
+      fitNote.textContent = fitText(wp.series);
+      // The invariants' runs at the largest h any order is fitted from (else the smallest h run).
+      const fitted = wp.series.flatMap((s) => s.points.filter((p) => p.in_fit).map((p) => p.h));
+      energyStep = fitted.length ? Math.max(...fitted) : Math.min(...wp.series.flatMap((s) => s.points.map((p) => p.h)));
+      energyRequests.forEach((r) => { r.body.h ??= energyStep; });
       last = { wp, runs: [] };
       if (!energyRequests.length) {
         live.textContent = `Done: ${timed}.`;

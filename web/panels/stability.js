@@ -2,7 +2,7 @@
 // method, then the server-rendered heatmap PNG. Hover or focus a cell for its numbers; click or Enter
 // opens that solve in the Solve panel.
 import { postImage, postJSON, postSvg, stream } from '../shared/api.js';
-import { catalog } from '../shared/catalog.js';
+import { catalog, entry } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { imageWidth, onWidthChange } from '../shared/image_width.js';
 import { actions, checkboxes, contractNumber, folded, range, select } from '../shared/fields.js';
@@ -133,8 +133,11 @@ export function createStabilityPanel(root, { openSolve }) {
   new IntersectionObserver((seen) => { if (seen.some((x) => x.isIntersecting)) replan(); }).observe(form);
 
   function requestOf() {
-    const request = { ...problemOf(form), methods: checkedValues(form, 'methods'),
-      differential: value(form, 'differential'), n: wholeRange(form, 'n_lo', 'n_hi', 'N'),
+    const problem = problemOf(form);
+    // rigid-body and heavy-top are written for one n: the map sweeps h alone there.
+    const onlyN = problem.problem ? entry('problem', problem.problem).n : undefined;
+    const request = { ...problem, methods: checkedValues(form, 'methods'),
+      differential: value(form, 'differential'), n: onlyN ? [onlyN] : wholeRange(form, 'n_lo', 'n_hi', 'N'),
       h: wholeRange(form, 'k_lo', 'k_hi', 'k').map((k) => 2 ** k), seed: value(form, 'seed'),
       tol: value(form, 'tol'), max_iterations: value(form, 'max_iterations'),
       globalization: value(form, 'globalization'), continuation: value(form, 'continuation') === 'true' };

@@ -124,6 +124,8 @@ export function seriesStyle(i) {
 // Draws each shown series' markers at its points (uPlot draws only circles).
 // Hollow, and each series' a little smaller than the one before: where curves coincide (the same iterates
 // by two methods) every marker's outline still shows around the later ones.
+const EXCLUDED_GREY = '#9a9a9a';
+
 function drawMarkers(u) {
   const c = u.ctx;
   c.save();
@@ -136,16 +138,19 @@ function drawMarkers(u) {
     // A marker name the server's style table has and this map lacks is an error, not a line without markers.
     if (!shape) throw new Error(`no marker shape for "${s._marker}"`);
     const [xs, ys] = u.mode === 2 ? u.data[i] : [u.data[0], u.data[i]];
-    c.beginPath();
-    for (let k = 0; k < xs.length; k++) {
-      if (ys[k] == null) continue;
-      const x = u.valToPos(xs[k], 'x', true);
-      const y = u.valToPos(ys[k], 'y', true);
-      c.moveTo(x + r, y);
-      shape(c, x, y, r);
+    // The series' own colour, then (work precision) its points left out of the fit in grey.
+    for (const grey of [false, true]) {
+      c.beginPath();
+      for (let k = 0; k < xs.length; k++) {
+        if (ys[k] == null || Boolean(s._excluded?.[k]) !== grey) continue;
+        const x = u.valToPos(xs[k], 'x', true);
+        const y = u.valToPos(ys[k], 'y', true);
+        c.moveTo(x + r, y);
+        shape(c, x, y, r);
+      }
+      c.strokeStyle = grey ? EXCLUDED_GREY : s._color;
+      c.stroke();
     }
-    c.strokeStyle = s._color;
-    c.stroke();
   }
   c.restore();
 }
@@ -181,7 +186,9 @@ export function workPrecisionChart(container, runs, hover) {
   const yr = decades(null, Math.min(...all(1)), Math.max(...all(1)));
   const series = [{}].concat(runs.map((r, i) => {
     const st = seriesStyle(i);
+    // Points the order is not fitted from (in_fit false) are drawn grey: drawMarkers reads _excluded.
     return { label: r.label, stroke: st.color, dash: st.dash, width: 2, _color: st.color, _marker: st.marker,
+      _excluded: tables[i].pts.map((p) => p.in_fit === false),
       facets: [{ scale: 'x', auto: false }, { scale: 'y', auto: false }], paths: uPlot.paths.linear(),
       points: { show: false } };
   }));
@@ -192,7 +199,8 @@ export function workPrecisionChart(container, runs, hover) {
     const p = tables[i - 1].pts[k];
     const cpu = p.cpu_runs ? `median ${spreadText(p.cpu_runs)} of ${p.cpu_runs.length} runs` : fmtSeconds(p.cpu_seconds);
     hover.textContent = `${runs[i - 1].label}: h = ${fmtH(p.h)}, solver CPU time ${cpu}, ` +
-      `global error ${fmtExp(p.error)}, ${p.iterations} iterations`;
+      `global error ${fmtExp(p.error)}, ${p.iterations} iterations` +
+      (p.in_fit === false && p.excluded ? `; not in the fit: ${p.excluded}` : '');
     hover.dataset.h = String(p.h);
   };
   const opts = {
@@ -236,8 +244,8 @@ function drawHLabels(u, tables) {
   const drawn = [];
   tables.forEach((t, i) => {
     if (!u.series[i + 1].show) return;
-    c.fillStyle = u.series[i + 1]._color;
     t.pts.forEach((p, k) => {
+      c.fillStyle = p.in_fit === false ? EXCLUDED_GREY : u.series[i + 1]._color;
       const kk = Math.log2(p.h);
       const text = Number.isInteger(kk) ? `2${superscript(kk)}` : String(p.h);
       const x = u.valToPos(t.xy[0][k], 'x', true);

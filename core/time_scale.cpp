@@ -1,0 +1,30 @@
+#include "time_scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "group_registry.hpp"
+
+namespace lienewton {
+
+double field_rate(const ProblemSpec& problem) {
+  return group_family(problem.group).field_rate(problem, problem.start());
+}
+
+std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end) {
+  const double rate = field_rate(problem);
+  // A field that does not move (rate 0) or overflows at its start has no scale: the slow problems' steps.
+  int e = std::ilogb(kMaxDefaultStep);
+  if (std::isfinite(rate) && rate > 0.0) e = std::min(e, static_cast<int>(std::floor(-std::log2(rate))));
+  e = std::max(e, std::numeric_limits<double>::min_exponent + kDefaultStepCount);
+  std::vector<double> h;
+  for (int k = 0; k < kDefaultStepCount; ++k) {
+    const double step = std::ldexp(1.0, e - k);
+    if (k >= kMinDefaultStepCount && t_end / step > kMaxDefaultRunSteps) break;
+    h.push_back(step);
+  }
+  return h;
+}
+
+}  // namespace lienewton
