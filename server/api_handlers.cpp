@@ -242,25 +242,19 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   };
 }
 
-// The body is parsed before the gate (no compiling, no evaluating); the job is made (validated) after it.
-HttpResponse ApiHandlers::solve(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return solve_job(body); }, false, options_.request_timeout);
-}
+HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, &ApiHandlers::solve_job, false, options_.request_timeout); }
 HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return solve_job(body); }, true, options_.request_timeout);
+  return serve(req, &ApiHandlers::solve_job, true, options_.request_timeout);
 }
-HttpResponse ApiHandlers::sweep(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return sweep_job(body); }, false, options_.sweep_timeout);
-}
+HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, &ApiHandlers::sweep_job, false, options_.sweep_timeout); }
 HttpResponse ApiHandlers::basins(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return basins_job(body); }, false, options_.sweep_timeout);
+  return serve(req, &ApiHandlers::basins_job, false, options_.sweep_timeout);
 }
 HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return integrate_job(body); }, false, options_.request_timeout);
+  return serve(req, &ApiHandlers::integrate_job, false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
-  return serve(req, [this, body = request_json(req)] { return work_precision_job(body); }, false,
-               options_.request_timeout);
+  return serve(req, &ApiHandlers::work_precision_job, false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists; absent ones take the defaults
@@ -307,17 +301,18 @@ HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
 }
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
-HttpResponse ApiHandlers::serve(const HttpRequest& req, const Prepare& prepare, bool sse, double budget_seconds) {
+HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds) {
+  const json body = request_json(req);  // parsing only: no compiling, no evaluating before the gate
   auto slot = acquire_slot(req);
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
   const auto token = make_token(budget_seconds, req);
-  // Validation compiles and evaluates a user's program: under the slot and the token, yet before a stream's
-  // status line, so that its refusals stay plain 400/422 answers.
+  // Making the job validates the request, which compiles and evaluates a user's program: under the slot and the
+  // token, yet before a stream's status line, so that its refusals stay plain 400/422 answers.
   Job job;
   {
     const CancellationScope scope(token.get());
     try {
-      job = prepare();
+      job = (this->*make_job)(body);
     } catch (const Cancelled&) {
       throw_stopped(*token);
     }

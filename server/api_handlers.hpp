@@ -52,8 +52,6 @@ class ApiHandlers {
   using Emit = std::function<bool(const char* type, json record)>;
   // Runs the work; returns the terminal result (without "type"). Throws ApiError/RequestError.
   using Job = std::function<json(const Emit& emit, const CancellationToken& token)>;
-  // Validates a parsed request and returns its job: called under the slot and the token.
-  using Prepare = std::function<Job()>;
 
  private:
   class Slot;
@@ -66,12 +64,14 @@ class ApiHandlers {
   // done: what the work got through before it stopped, appended to the deadline message.
   [[noreturn]] void throw_stopped(const CancellationToken& token, const std::string& done = {}) const;
 
+  // Each validates a parsed request and returns its job: called under the slot and the token.
+  using MakeJob = Job (ApiHandlers::*)(const json& body);
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job basins_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
-  HttpResponse serve(const HttpRequest& req, const Prepare& prepare, bool sse, double budget_seconds);
+  HttpResponse serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds);
   HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, std::shared_ptr<CancellationToken> token);
   HttpResponse render(const HttpRequest& req, const json& body, RenderRequestFn draw, double budget_seconds);
 
