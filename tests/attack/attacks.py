@@ -726,30 +726,35 @@ def quietly(fn, *args):
         pass
 
 
-def sigterm_during_long_work(t, server_bin):
+def sigterm_after(server_bin, args, load, settle):
+    """Starts a server of its own with args, puts `load(target)` on it, waits `settle` s and sends SIGTERM:
+    (exit status, or None when still running 10 s later; seconds to exit)."""
     port = free_port()
-    server = start_server(server_bin, port, "--shutdown-grace", "2")
+    server = start_server(server_bin, port, *args)
     try:
         own = Target(f"http://127.0.0.1:{port}")
-        for _ in range(50):
-            if own.livez_seconds(timeout=1.0) is not None:
-                break
-            time.sleep(0.1)
-        body = json.dumps({"n": [16], "h": [8], "methods": ["newton-group"], "differential": "finite-difference",
-                           "max_iterations": 10000})
-        threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body), daemon=True).start()
-        time.sleep(1.0)
+        expect(wait_alive(own), "server did not start")
+        load(own)
+        time.sleep(settle)
         start = time.monotonic()
         server.send_signal(signal.SIGTERM)
         try:
             rc = server.wait(timeout=10.0)
         except subprocess.TimeoutExpired:
             rc = None
-        secs = time.monotonic() - start
+        return rc, time.monotonic() - start
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
+
+
+def sigterm_during_long_work(t, server_bin):
+    body = json.dumps({"n": [16], "h": [8], "methods": ["newton-group"], "differential": "finite-difference",
+                       "max_iterations": 10000})
+    load = lambda own: threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body),
+                                        daemon=True).start()
+    rc, secs = sigterm_after(server_bin, ("--shutdown-grace", "2"), load, 1.0)
     expect(rc == 0, f"still running {secs:.1f} s after SIGTERM with --shutdown-grace 2" if rc is None else f"exit {rc}")
     return f"exit 0 after {secs:.1f} s"
 
@@ -805,10 +810,8 @@ def post_and_leave(t, path, body, seconds, answers):
             time.sleep(remaining)
 
 
-def abandoned_sweeps_one_address(t, server_bin):
-    # Four program sweeps from one address that hang up at 2 s: beyond the per-client limit the answer is 429 at
-    # once (before any compiling), and the servers' CPU is back to idle within 1 s of the clients leaving (the
-    # battery's 3 s deadline would only stop them 1 s later).
+def abandon_four_sweeps(t):
+    """Four PROGRAM_SWEEPs at once from t's address, each left after 2 s; their (status, seconds)."""
     answers = []
     threads = [threading.Thread(target=post_and_leave, args=(t, "/api/v1/sweep", PROGRAM_SWEEP, 2.0, answers))
                for _ in range(4)]
@@ -816,6 +819,14 @@ def abandoned_sweeps_one_address(t, server_bin):
         th.start()
     for th in threads:
         th.join(timeout=10.0)
+    return answers
+
+
+def abandoned_sweeps_one_address(t, server_bin):
+    # Four program sweeps from one address that hang up at 2 s: beyond the per-client limit the answer is 429 at
+    # once (before any compiling), and the servers' CPU is back to idle within 1 s of the clients leaving (the
+    # battery's 3 s deadline would only stop them 1 s later).
+    answers = abandon_four_sweeps(t)
     busy = cpu_seconds_between(server_bin, 0.4, 0.9)
     refused = [secs for status, secs in answers if status == 429]
     detail = f"answers {sorted(answers, key=lambda a: str(a[0]))}, CPU {busy:.2f} s in 0.4-0.9 s after leaving"
@@ -856,34 +867,11 @@ def deadline_within_a_tenth(t):
 
 def sigterm_after_abandoned_sweeps(t, server_bin):
     # The abandoned sweeps against a server of its own with the default deadlines (120 s for sweeps): SIGTERM
-    # half a second after the clients left ends the process within its documented 10 s.
-    port = free_port()
-    server = start_server(server_bin, port)
-    try:
-        own = Target(f"http://127.0.0.1:{port}")
-        expect(wait_alive(own), "server did not start")
-        answers = []
-        threads = [threading.Thread(target=post_and_leave, args=(own, "/api/v1/sweep", PROGRAM_SWEEP, 2.0, answers))
-                   for _ in range(4)]
-        for th in threads:
-            th.start()
-        for th in threads:
-            th.join(timeout=10.0)
-        time.sleep(0.5)
-        start = time.monotonic()
-        server.send_signal(signal.SIGTERM)
-        try:
-            rc = server.wait(timeout=10.0)
-        except subprocess.TimeoutExpired:
-            rc = None
-        secs = time.monotonic() - start
-    finally:
-        if server.poll() is None:
-            server.kill()
-            server.wait()
+    # 1 s after they started (their clients leave 1 s later) ends the process within its documented 10 s.
+    load = lambda own: threading.Thread(target=abandon_four_sweeps, args=(own,), daemon=True).start()
+    rc, secs = sigterm_after(server_bin, (), load, 1.0)
     expect(rc == 0, f"still running {secs:.1f} s after SIGTERM" if rc is None else f"exit {rc}")
     return f"exit 0 after {secs:.2f} s"
-
 
 ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field, duplicate_key, deep_nesting,
            huge_sweep_grid, wrong_content_type, trailing_nul_in_json, oversized_body, valid_9k_body_as_form,
