@@ -21,6 +21,10 @@ void validate(const ProblemSpec& problem) {
   validation::check_user_field(problem);
 }
 
+std::shared_ptr<const user_field::Program> ProblemSpec::program() const {
+  return programs->get(*g, group_family(group).matrix_size(n), parameters);
+}
+
 std::string ProblemSpec::name() const { return g ? "g(y)" : std::string(to_string(kind)); }
 
 }  // namespace lienewton

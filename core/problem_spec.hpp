@@ -8,6 +8,7 @@
 
 #include "heavy_top_params.hpp"
 #include "options.hpp"
+#include "program_cache.hpp"
 #include "rigid_body_params.hpp"
 #include "user_field/program.hpp"
 
@@ -27,11 +28,16 @@ struct ProblemSpec {
   // matrices it reads.
   std::optional<std::string> g{};
   user_field::Parameters parameters{};
+  // g compiled per matrix size, shared with this spec's copies: compiled once per request and n.
+  std::shared_ptr<ProgramCache> programs = std::make_shared<ProgramCache>();
 
   // Whether the request's field is the built-in problem `k` (not a user's program).
   bool is(ProblemKind k) const { return !g && kind == k; }
   // The field's name in titles and reasons: the built-in problem's, or "g(y)".
   std::string name() const;
+
+  // g compiled for n (from `programs`); throws RequestError naming g. Only for a spec with g.
+  std::shared_ptr<const user_field::Program> program() const;
 
   // z, or heavy-top's start, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;

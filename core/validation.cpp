@@ -76,7 +76,7 @@ void check_user_field(const ProblemSpec& problem) {
     invalid("parameters", "at most " + std::to_string(user_field::kMaxParameters) + " parameters");
   for (const auto& [name, value] : problem.parameters) user_field::check_parameter(name, value);
   const GroupFamily& family = group_family(problem.group);
-  const auto program = user_field::compile(*problem.g, family.matrix_size(problem.n), problem.parameters);
+  const auto program = problem.program();
   // A program whose value at the start is off the algebra is wrong everywhere in practice: say so before solving,
   // when one evaluation is cheap (a sweep validates every n); otherwise the run's own check names g.
   constexpr double kCheapFlops = 1e8;

@@ -98,11 +98,11 @@ std::shared_ptr<ApiHandlers::Slot> ApiHandlers::acquire_slot(const HttpRequest& 
   return std::make_shared<Slot>(*this, req.client);
 }
 
-std::shared_ptr<CancellationToken> ApiHandlers::make_token(double budget_seconds) const {
+std::shared_ptr<CancellationToken> ApiHandlers::make_token(double budget_seconds, const HttpRequest& req) {
   const auto timeout = std::chrono::duration_cast<CancellationToken::Clock::duration>(
       std::chrono::duration<double>(budget_seconds));
-  return std::make_shared<CancellationToken>(CancellationToken::Clock::now() + timeout, &abort_work_, nullptr,
-                                             budget_seconds);
+  return std::make_shared<CancellationToken>(CancellationToken::Clock::now() + timeout, &abort_work_,
+                                             disconnects_.watch(req.socket), budget_seconds);
 }
 
 // Runs a job with its token as the thread's current one, so that every core loop polls it.
@@ -242,19 +242,19 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
   };
 }
 
-HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, solve_job(request_json(req)), false, options_.request_timeout); }
+HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, &ApiHandlers::solve_job, false, options_.request_timeout); }
 HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
-  return serve(req, solve_job(request_json(req)), true, options_.request_timeout);
+  return serve(req, &ApiHandlers::solve_job, true, options_.request_timeout);
 }
-HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, sweep_job(request_json(req)), false, options_.sweep_timeout); }
+HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, &ApiHandlers::sweep_job, false, options_.sweep_timeout); }
 HttpResponse ApiHandlers::basins(const HttpRequest& req) {
-  return serve(req, basins_job(request_json(req)), false, options_.sweep_timeout);
+  return serve(req, &ApiHandlers::basins_job, false, options_.sweep_timeout);
 }
 HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
-  return serve(req, integrate_job(request_json(req)), false, options_.request_timeout);
+  return serve(req, &ApiHandlers::integrate_job, false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
-  return serve(req, work_precision_job(request_json(req)), false, options_.request_timeout);
+  return serve(req, &ApiHandlers::work_precision_job, false, options_.request_timeout);
 }
 HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists; absent ones take the defaults
@@ -301,10 +301,22 @@ HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
 }
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
-HttpResponse ApiHandlers::serve(const HttpRequest& req, Job job, bool sse, double budget_seconds) {
+HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds) {
+  const json body = request_json(req);  // parsing only: no compiling, no evaluating before the gate
   auto slot = acquire_slot(req);
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
-  const auto token = make_token(budget_seconds);
+  const auto token = make_token(budget_seconds, req);
+  // Making the job validates the request, which compiles and evaluates a user's program: under the slot and the
+  // token, yet before a stream's status line, so that its refusals stay plain 400/422 answers.
+  Job job;
+  {
+    const CancellationScope scope(token.get());
+    try {
+      job = (this->*make_job)(body);
+    } catch (const Cancelled&) {
+      throw_stopped(*token);
+    }
+  }
   if (sse || ndjson) return stream(std::move(slot), std::move(job), sse, token);
   return json_response(dump(run(job, Emit{}, *token)));
 }
@@ -343,6 +355,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
       terminal = error_body(e);
     } catch (...) {
       // Nothing may escape a body stream: it runs outside the transport's exception handler.
+      log_internal_error("a body stream", std::current_exception());
       kind = "error";
       terminal = error_body("internal_error", "", "internal error");
     }
@@ -361,7 +374,7 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   const bool cacheable = req.method == "GET";
   const std::string etag = cacheable ? content_etag(build_id() + " " + req.path + " " + dump(body)) : "";
   if (cacheable && none_match_fails(req, etag, false)) return not_modified(etag, kRenderCacheControl);
-  const auto token_ptr = make_token(budget_seconds);
+  const auto token_ptr = make_token(budget_seconds, req);
   const CancellationToken& token = *token_ptr;
   const CancellationScope scope(&token);
   std::shared_ptr<Slot> slot;

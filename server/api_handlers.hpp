@@ -1,7 +1,8 @@
 #pragma once
 // The service's handlers, one per route: each turns an HttpRequest into an HttpResponse (or a record stream) and
-// never sees the transport. Long-work routes (solve, sweep, integrate, work-precision, renders) parse and
-// validate, take a work slot, then run inline (JSON, PNG) or inside the response's body stream (NDJSON, SSE).
+// never sees the transport. Long-work routes (solve, sweep, integrate, work-precision, renders) parse, take a
+// work slot and a cancellation token (deadline, shutdown, client gone), and only then validate (which compiles
+// and evaluates a user's program), then run inline (JSON, PNG) or inside the response's body stream (NDJSON, SSE).
 #include <atomic>
 #include <functional>
 #include <map>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "server/disconnect_watch.hpp"
 #include "server/http_exchange.hpp"
 #include "server/json_codec.hpp"
 #include "server/metrics.hpp"
@@ -54,19 +56,22 @@ class ApiHandlers {
  private:
   class Slot;
   std::shared_ptr<Slot> acquire_slot(const HttpRequest& req);
-  // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps and heatmaps).
-  std::shared_ptr<CancellationToken> make_token(double budget_seconds) const;
+  // budget_seconds: the deadline (--request-timeout, or --sweep-timeout for sweeps and heatmaps); the token is
+  // also cancelled when the client of the request's socket leaves.
+  std::shared_ptr<CancellationToken> make_token(double budget_seconds, const HttpRequest& req);
   json run(const Job& job, const Emit& emit, const CancellationToken& token) const;
   void progress(int index) const;
   // done: what the work got through before it stopped, appended to the deadline message.
   [[noreturn]] void throw_stopped(const CancellationToken& token, const std::string& done = {}) const;
 
+  // Each validates a parsed request and returns its job: called under the slot and the token.
+  using MakeJob = Job (ApiHandlers::*)(const json& body);
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job basins_job(const json& body);
   Job integrate_job(const json& body);
   Job work_precision_job(const json& body);
-  HttpResponse serve(const HttpRequest& req, Job job, bool sse, double budget_seconds);
+  HttpResponse serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds);
   HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, std::shared_ptr<CancellationToken> token);
   HttpResponse render(const HttpRequest& req, const json& body, RenderRequestFn draw, double budget_seconds);
 
@@ -79,6 +84,7 @@ class ApiHandlers {
   std::mutex slots_mutex_;
   std::map<std::string, int> slots_per_client_;  // long requests running per client address
   std::unique_ptr<render::Renderer> renderer_;
+  DisconnectWatch disconnects_;
 };
 
 }  // namespace lienewton::service

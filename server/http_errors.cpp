@@ -2,6 +2,8 @@
 
 #include "server/json_codec.hpp"
 
+#include <cstdio>
+
 namespace lienewton::service {
 
 HttpResponse error_response(int status, std::string_view code, std::string_view field, std::string_view message) {
@@ -26,6 +28,17 @@ HttpResponse error_response(const std::exception_ptr& error) {
     res.body = dump(error_body(e));
     return res;
   }
+}
+
+void log_internal_error(const std::string& where, const std::exception_ptr& error) {
+  std::string cause = "an exception of unknown type";
+  try {
+    if (error) std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    cause = e.what();
+  } catch (...) {
+  }
+  std::fprintf(stderr, "lienewton-server: internal error in %s: %s\n", where.c_str(), cause.c_str());
 }
 
 }  // namespace lienewton::service

@@ -31,4 +31,8 @@ HttpResponse error_response(int status, std::string_view code, std::string_view 
 // RequestError (400, or 422 for a well-formed but unprocessable request). Other exceptions are rethrown.
 HttpResponse error_response(const std::exception_ptr& error);
 
+// Writes an unexpected exception's cause (its what(), or its type unknown) to stderr, with where it happened: the
+// client only sees 500 internal_error, the operator must see why.
+void log_internal_error(const std::string& where, const std::exception_ptr& error);
+
 }  // namespace lienewton::service

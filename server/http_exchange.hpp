@@ -27,6 +27,8 @@ struct HttpRequest {
   std::string body;
   // The client's address: the TCP peer, or the X-Real-IP a trusted front forwarded (long-work slots per client).
   std::string client;
+  // The connection's socket on long-work routes (-1 elsewhere): watched for a client that leaves mid-work.
+  int socket = -1;
 
   bool has_header(const std::string& name) const { return headers.count(name) > 0; }
   std::size_t header_count(const std::string& name) const { return headers.count(name); }

@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "server/api_handlers.hpp"
+#include "server/disconnect_watch.hpp"
 #include "server/http_errors.hpp"
 #include "server/request_limits.hpp"
 #include "server/routes.hpp"
@@ -223,6 +224,12 @@ HttpRequest to_exchange(const httplib::Request& req, std::string client, std::st
   return r;
 }
 
+// A long request learns its connection's socket, to notice a client that leaves (disconnect_watch.hpp).
+HttpRequest with_socket(HttpRequest r, const httplib::Request& req, bool long_work) {
+  if (long_work) r.socket = connection_socket(req.remote_addr, req.remote_port, req.local_port);
+  return r;
+}
+
 // cpp-httplib 0.11.4 applies a request's Range to any body it sends, error bodies included, but sends a chunked
 // provider's body whole: so a body that must not be sliced goes out chunked.
 void set_whole_body(httplib::Response& res, std::string body, const std::string& content_type) {
@@ -382,14 +389,16 @@ void HttpServer::install() {
     const std::string pattern = regex_escape(route.path);
     if (route.method == "GET") {
       const bool ranges = serves_byte_ranges(&route);
-      svr.Get(pattern, [this, answer = route.handler, ranges](const httplib::Request& req, httplib::Response& res) {
-        send(respond(answer, to_exchange(req, client_address(req))), res, !ranges && !req.ranges.empty());
+      svr.Get(pattern, [this, answer = route.handler, ranges, long_work = route.long_work](const httplib::Request& req,
+                                                                                           httplib::Response& res) {
+        send(respond(answer, with_socket(to_exchange(req, client_address(req)), req, long_work)), res,
+             !ranges && !req.ranges.empty());
       });
     } else {
       // Read through a content reader: cpp-httplib's own body reading parses form bodies (what curl -d sends)
       // into parameters and refuses them beyond 8192 bytes; these bodies are JSON whatever their label.
-      svr.Post(pattern, [this, answer = route.handler](const httplib::Request& req, httplib::Response& res,
-                                                       const httplib::ContentReader& read) {
+      svr.Post(pattern, [this, answer = route.handler, long_work = route.long_work](
+                            const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& read) {
         std::string body;
         const bool complete = read([&body](const char* data, std::size_t size) {
           body.append(data, size);
@@ -405,7 +414,8 @@ void HttpServer::install() {
           send(error_response(400, "incomplete_body", "", "the request body did not arrive in full"), res, false);
           return;
         }
-        send(respond(answer, to_exchange(req, client_address(req), std::move(body))), res, !req.ranges.empty());
+        send(respond(answer, with_socket(to_exchange(req, client_address(req), std::move(body)), req, long_work)), res,
+             !req.ranges.empty());
       });
     }
     registered_.emplace_back(route.method, route.path);
@@ -447,7 +457,8 @@ void HttpServer::install() {
   });
 
   // Without this cpp-httplib 0.11.4 puts the exception text into a response header (CVE-2026-28434).
-  svr.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+  svr.set_exception_handler([](const httplib::Request& req, httplib::Response& res, std::exception_ptr error) {
+    log_internal_error(req.method + " " + req.path, error);
     res.headers.erase("Content-Type");
     send(error_response(500, "internal_error", "", "internal error"), res, false);
   });

@@ -301,8 +301,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     SolveRequest r = solve_request_from_json(request, limits);
     check_rotations(r.problem);
     r.solver.include_iterates = true;
-    validate(r);
     before_work(hooks);
+    validate(r);
     SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
@@ -323,8 +323,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   check_rotations(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   r.reference = false;  // the picture needs no global error
-  validate(r);
   before_work(hooks);
+  validate(r);
   bool stopped = false;
   IntegrateResult result = integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
@@ -364,6 +364,7 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
     }
     // The request the cells came from, for the title: it must at least hold every cell in its grid.
     SweepRequest r = sweep_request_from_json(request, limits);
+    before_work(hooks);
     validate(r);
     for (std::size_t i = 0; i < result.cells.size(); ++i) {
       const SweepCell& c = result.cells[i];
@@ -374,19 +375,20 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
                              number_text(c.h) + ") is not in the grid of the request beside it");
       }
     }
-    before_work(hooks);
     return renderer.heatmap_png(result, options, heatmap_caption(result, &r, options.metric), format);
   }
   SweepRequest r = sweep_request_from_json(request, limits);
-  validate(r);
   before_work(hooks);
+  validate(r);
   int index = 0;
   bool stopped = false;
   const SweepResult result = sweep(r, [&](const SweepCell& cell) {
     if (hooks.on_cell) hooks.on_cell(cell);
     return !(stopped = !keep_going(hooks, index++));
   });
-  if (stopped) throw RenderCancelled{};
+  // Cells cancelled by the deadline never reach the callback: a sweep short of its cells was stopped.
+  const std::size_t cells = r.shard ? shard_cells(r, *r.shard).size() : result.grid_cells;
+  if (stopped || result.cells.size() != cells) throw RenderCancelled{};
   return renderer.heatmap_png(result, options, heatmap_caption(result, &r, options.metric), format);
 }
 
@@ -397,8 +399,8 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
   const int height = take_int(request, "height", 0, true);
   const render::ImageFormat format = take_format(request);
   BasinRequest r = basin_request_from_json(request, limits);
-  validate(r);
   before_work(hooks);
+  validate(r);
   int index = 0;
   bool stopped = false;
   const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
@@ -424,8 +426,8 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   const int height = take_int(request, "height", kWorkPrecisionFigure.height, false);
   const render::ImageFormat format = take_format(request);
   WorkPrecisionRequest r = work_precision_request_from_json(request, limits);
-  validate(r);
   before_work(hooks);
+  validate(r);
   int index = 0;
   bool stopped = false;
   const WorkPrecisionResult result = work_precision(r, [&](const WorkPrecisionSeries&) {
@@ -445,11 +447,11 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
   const render::ImageFormat format = take_format(request);
   IntegrateRequest r = integrate_request_from_json(request, limits);
   r.reference = false;  // the picture needs no global error
+  before_work(hooks);
   validate(r);
   if (!has_invariants(r.problem))
     throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body and "
                                                     "heavy-top do)");
-  before_work(hooks);
   bool stopped = false;
   const IntegrateResult result =
       integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
@@ -478,8 +480,8 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
     }
   }
   SolveRequest base = solve_request_from_json(request, limits);
-  validate(base);
   before_work(hooks);
+  validate(base);
   std::vector<render::ResidualRun> runs;
   int index = 0;
   for (Method m : methods) {

@@ -13,7 +13,7 @@ namespace lienewton::render { class Renderer; }
 namespace lienewton::service {
 
 struct RenderHooks {
-  std::function<void()> before_work;                         // after validation, before any solving (take a slot)
+  std::function<void()> before_work;                         // before validation (it compiles g) and any solving: take a slot
   std::function<bool(int index)> keep_going;                 // per iteration/step/cell; false cancels
   std::function<void(const SweepCell&)> on_cell;             // sweep cells, for metrics
   std::function<void(const SolveResult&)> on_solve;          // finished solve, for metrics

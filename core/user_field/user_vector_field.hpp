@@ -90,7 +90,7 @@ class UserVectorField final : public VectorField<G> {
 template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, const ProblemSpec& problem) {
   if (problem.g)
-    return std::make_unique<UserVectorField<G>>(group, user_field::compile(*problem.g, static_cast<int>(group.matrix(group.identity()).rows()), problem.parameters));
+    return std::make_unique<UserVectorField<G>>(group, problem.program());
   return make_field(group, problem.kind, problem.rigid_body, problem.heavy_top);
 }
 

@@ -739,26 +739,146 @@ def sigterm_and_wait(process, limit):
     return rc, time.monotonic() - start
 
 
-def sigterm_during_long_work(t, server_bin):
+def sigterm_after(server_bin, args, load, settle):
+    """Starts a server of its own with args, puts `load(target)` on it, waits `settle` s and sends SIGTERM:
+    (exit status, or None when still running 10 s later; seconds to exit)."""
     port = free_port()
-    server = start_server(server_bin, port, "--shutdown-grace", "2")
+    server = start_server(server_bin, port, *args)
     try:
         own = Target(f"http://127.0.0.1:{port}")
-        for _ in range(50):
-            if own.livez_seconds(timeout=1.0) is not None:
-                break
-            time.sleep(0.1)
-        body = json.dumps({"n": [16], "h": [8], "methods": ["newton-group"], "differential": "finite-difference",
-                           "max_iterations": 10000})
-        threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body), daemon=True).start()
-        time.sleep(1.0)
-        rc, secs = sigterm_and_wait(server, 10.0)
+        expect(wait_alive(own), "server did not start")
+        load(own)
+        time.sleep(settle)
+        return sigterm_and_wait(server, 10.0)
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
+
+
+def sigterm_during_long_work(t, server_bin):
+    body = json.dumps({"n": [16], "h": [8], "methods": ["newton-group"], "differential": "finite-difference",
+                       "max_iterations": 10000})
+    load = lambda own: threading.Thread(target=quietly, args=(own.request, "POST", "/api/v1/sweep", body),
+                                        daemon=True).start()
+    rc, secs = sigterm_after(server_bin, ("--shutdown-grace", "2"), load, 1.0)
     expect(rc == 0, f"still running {secs:.1f} s after SIGTERM with --shutdown-grace 2" if rc is None else f"exit {rc}")
     return f"exit 0 after {secs:.1f} s"
+
+
+# ---------------------------------------------------------------- abandoned work (the gate, disconnects, drain)
+# A user's program over a 20-entry n list: each n compiles g and evaluates it before any cell, and every cell
+# iterates by finite differences (one evaluation of g per column) for far longer than any deadline.
+PROGRAM_SWEEP = json.dumps({"g": "u = sin(y)*(2*y - 5*y^2); g = u - u'", "n": list(range(10, 30)), "h": [8],
+                            "methods": ["newton-group"], "differential": "finite-difference", "max_iterations": 10000})
+
+
+def server_cpu_ticks(server_bin):
+    """utime + stime (clock ticks) summed over the running processes of server_bin (the replicas behind nginx)."""
+    exe = os.path.realpath(server_bin)
+    ticks = 0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if os.readlink(f"/proc/{pid}/exe") != exe:
+                continue
+            with open(f"/proc/{pid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            ticks += int(fields[11]) + int(fields[12])  # utime, stime (fields 14 and 15 of proc(5))
+        except OSError:
+            continue
+    return ticks
+
+
+def cpu_seconds_between(server_bin, start, end):
+    """The servers' CPU seconds from `start` to `end` seconds from now."""
+    time.sleep(start)
+    before = server_cpu_ticks(server_bin)
+    time.sleep(end - start)
+    return (server_cpu_ticks(server_bin) - before) / os.sysconf("SC_CLK_TCK")
+
+
+def post_and_leave(t, path, body, seconds, answers):
+    """POSTs body on a raw connection and closes it after `seconds`; files (status, seconds) of an answer that came
+    before, (None, seconds) otherwise."""
+    start = time.monotonic()
+    with socket.create_connection((t.host, t.port), timeout=5.0, source_address=t.source) as s:
+        data = body.encode()
+        s.sendall(f"POST {path} HTTP/1.1\r\nHost: {t.host}\r\nContent-Type: application/json\r\n"
+                  f"Content-Length: {len(data)}\r\n\r\n".encode() + data)
+        s.settimeout(max(0.01, seconds))
+        try:
+            head = s.recv(64)
+        except socket.timeout:
+            head = b""
+        match = re.match(rb"HTTP/1\.1 (\d{3})", head)
+        answers.append((int(match.group(1)) if match else None, time.monotonic() - start))
+        remaining = seconds - (time.monotonic() - start)
+        if remaining > 0 and not match:
+            time.sleep(remaining)
+
+
+def abandon_four_sweeps(t):
+    """Four PROGRAM_SWEEPs at once from t's address, each left after 2 s; their (status, seconds)."""
+    answers = []
+    threads = [threading.Thread(target=post_and_leave, args=(t, "/api/v1/sweep", PROGRAM_SWEEP, 2.0, answers))
+               for _ in range(4)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join(timeout=10.0)
+    return answers
+
+
+def abandoned_sweeps_one_address(t, server_bin):
+    # Four program sweeps from one address that hang up at 2 s: beyond the per-client limit the answer is 429 at
+    # once (before any compiling), and the servers' CPU is back to idle within 1 s of the clients leaving (the
+    # battery's 3 s deadline would only stop them 1 s later).
+    answers = abandon_four_sweeps(t)
+    busy = cpu_seconds_between(server_bin, 0.4, 0.9)
+    refused = [secs for status, secs in answers if status == 429]
+    detail = f"answers {sorted(answers, key=lambda a: str(a[0]))}, CPU {busy:.2f} s in 0.4-0.9 s after leaving"
+    if t.mode == "direct":  # one server: three slots per address (behind nginx the replicas share the four)
+        expect(len(refused) == 1, detail)
+    expect(all(secs < 0.5 for secs in refused), f"a 429 came late: {detail}")
+    expect(all(status in (None, 429) for status, _ in answers), f"an unexpected answer: {detail}")
+    expect(busy <= 0.1, f"the servers still work after their clients left: {detail}")
+    return detail
+
+
+def abandoned_plain_requests(t, server_bin):
+    # Plain JSON answers and pictures write nothing until their work ends: the server still notices a client that
+    # left (directly, or nginx closing its upstream connection) and stops within about one iteration.
+    long_solve = json.dumps({"n": 40, "h": 50, "method": "fixed-point", "max_iterations": 10000,
+                             "differential": "finite-difference"})
+    cases = [("/api/v1/sweep", PROGRAM_SWEEP), ("/api/v1/solve", long_solve),
+             ("/api/v1/render/heatmap", PROGRAM_SWEEP)]
+    results = []
+    for path, body in cases:
+        answers = []
+        post_and_leave(t, path, body, 1.0, answers)
+        busy = cpu_seconds_between(server_bin, 0.4, 0.9)
+        results.append(f"{path} {answers[0][0]} CPU {busy:.2f} s")
+        expect(answers[0][0] is None, f"{path} answered {answers[0][0]} before the client left")
+        expect(busy <= 0.1, f"{path}: the server still works after its client left: {results[-1]}")
+    return "; ".join(results)
+
+
+def deadline_within_a_tenth(t):
+    # The 504 of a program sweep comes within 10 % of the battery's 3 s deadline: the deadline starts at the gate
+    # and covers compiling and checking g for each n, not only the cells.
+    status, _, data, secs = t.request("POST", "/api/v1/sweep", PROGRAM_SWEEP, timeout=40.0)
+    expect(status == 504, f"status {status}: {data[:120]!r}")
+    expect(secs <= 3.3, f"504 after {secs:.2f} s with a 3 s deadline")
+    return f"504 after {secs:.2f} s"
+
+
+def sigterm_after_abandoned_sweeps(t, server_bin):
+    # The abandoned sweeps against a server of its own with the default deadlines (120 s for sweeps): SIGTERM
+    # 1 s after they started (their clients leave 1 s later) ends the process within its documented 10 s.
+    load = lambda own: threading.Thread(target=abandon_four_sweeps, args=(own,), daemon=True).start()
+    rc, secs = sigterm_after(server_bin, (), load, 1.0)
+    expect(rc == 0, f"still running {secs:.1f} s after SIGTERM" if rc is None else f"exit {rc}")
+    return f"exit 0 after {secs:.2f} s"
 
 
 # ---------------------------------------------------------------- the front as a shield, page headers, ranges
@@ -1050,8 +1170,11 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            cross_site_work, ndjson_stream, sse_stream, stream_first_record_early, huge_basin_grid,
            basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
            bad_continuation, bad_predictor, deadline_inside_continuation, bad_multistart,
-           deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address]
-PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work, descriptor_flood, sweep_timeout_ends_sweep]  # direct mode only: they start servers
+           deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address, deadline_within_a_tenth]
+# Attacks that measure the servers' CPU: they need --server-bin (both modes).
+CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests]
+PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work, descriptor_flood, sweep_timeout_ends_sweep,
+                   sigterm_after_abandoned_sweeps]  # direct mode only: they start servers
 # The page's headers, ranges and banner hold with and without the front; the front's own refusals and its
 # /metrics rule only through it; the fake dying replicas and the container's entrypoint start their own nginx
 # (with --via-nginx, where nginx is known to be installed).
@@ -1069,6 +1192,8 @@ def main():
     args = ap.parse_args()
     t = Target(args.base, args.mode)
     attacks = [(a, ()) for a in ATTACKS + FRONT_ATTACKS]
+    if args.server_bin:
+        attacks += [(a, (args.server_bin,)) for a in CPU_ATTACKS]
     if args.mode == "direct" and args.server_bin:
         attacks += [(a, (args.server_bin,)) for a in PROCESS_ATTACKS]
     if args.mode == "nginx":

@@ -25,7 +25,7 @@ pid=$!
 for _ in $(seq 100); do curl -sf -m 1 "http://127.0.0.1:$port/livez" >/dev/null && break; sleep 0.1; done
 curl -sf -m 2 "http://127.0.0.1:$port/livez" >/dev/null || { cat "$log"/*.log; echo "run_attacks: no /livez"; exit 1; }
 set +e
-timeout 300 python3 "$root/tests/attack/attacks.py" --base "http://127.0.0.1:$port" --mode "$mode" \
+timeout 300 python3 "$root/tests/attack/attacks.py" --base "http://127.0.0.1:$port" --mode "$mode" ${ATTACK_ONLY:+--only "$ATTACK_ONLY"} \
   --server-bin "$server_bin"
 rc=$?
 set -e
