@@ -82,7 +82,10 @@ SweepRequest with_defaults(SweepRequest req) {
 
 void validate(const SweepRequest& req) {
   if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
-  for (int n : req.n) validate(at_dimension(req.problem, n));
+  // Each n's cells run on up to `threads` threads at once, each with its own workspace for g.
+  const double cells = double(req.methods.size()) * double(req.h.size());
+  const int threads = static_cast<int>(std::min(double(resolve_thread_count(req.threads)), std::max(cells, 1.0)));
+  for (int n : req.n) validate(at_dimension(req.problem, n), threads);
   for (double h : req.h) validation::check(fields::h, h, "h");
   validate(req.solver);
   for (Method m : req.methods) check_globalization(m, req.solver);
