@@ -1117,8 +1117,8 @@ Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> direction(MatrixXd& stacked, Eigen
 }
 // The same memory as rows x (k cols), direction d's column j in column d + k j: a product from the left by a
 // value is one product of this wide matrix, as a product from the right is one of the stacked one.
-Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows) {
-  return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
+Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows, Eigen::Index k) {
+  return {stacked.data(), rows, stacked.cols() * k};  // k directions of an empty value are still k blocks wide
 }
 Eigen::Map<const MatrixXd> side_by_side(const Program::In& stacked, Eigen::Index rows) {
   return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
@@ -1162,7 +1162,7 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
       if (is_scalar(*b.x[0]) || is_scalar(*b.x[1])) break;
       if (varies(0)) out.noalias() = dx(0) * *b.x[1];
       else out.setZero();
-      if (varies(1)) side_by_side(out, r).noalias() += *b.x[0] * side_by_side(dx(1), rows_[slot(1)]);
+      if (varies(1)) side_by_side(out, r, k).noalias() += *b.x[0] * side_by_side(dx(1), rows_[slot(1)], k);
       return;
     case Op::emul:  // (A .* B)' = A' .* B + A .* B'
       if (!same_shape) break;
@@ -1264,7 +1264,7 @@ void Program::eval_along(const In& y, double t, const In& us, MatrixXd& dgs) con
     run(y, t, nullptr, ws);
     if (!ws.holds_derivatives) form_derivatives(ws);
     const auto ys = static_cast<std::size_t>(y_slot_), r = static_cast<std::size_t>(result_);
-    side_by_side(ws.stacked[ys], n).noalias() = y * side_by_side(us, n);
+    side_by_side(ws.stacked[ys], n, k).noalias() = y * side_by_side(us, n);
     for (std::size_t i = 0; i < code_.size(); ++i) {
       if (cancellation_requested()) throw Cancelled{};
       tangents_along(i, k, ws);

@@ -12,6 +12,7 @@
 #include "core/request_error.hpp"
 #include "core/solve.hpp"
 #include "core/user_field/program.hpp"
+#include "program_error.hpp"
 
 namespace lienewton {
 namespace {
@@ -69,17 +70,6 @@ TEST(UserFieldEmpty, EveryOperationTakesEmptyOperandsAsMatlabDoes) {
   expect_same_field("g = (y - y')*(1 + norm(y(:,[]) .^ 2))", "g = y - y'");
   // An empty range, index and literal.
   expect_same_field("g = (y - y')*(1 + norm(1:0) + norm(y(1:0, 1)) + norm([]))", "g = y - y'");
-}
-
-// The request error a program gets.
-RequestError compile_error(const std::string& source, int n = 3) {
-  try {
-    user_field::compile(source, n, {});
-  } catch (const RequestError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "compiled: " << source;
-  return RequestError(RequestError::Kind::invalid, "", "");
 }
 
 TEST(UserFieldEmpty, WhatMatlabRefusesOnEmptyValuesIsA422AtItsPlace) {

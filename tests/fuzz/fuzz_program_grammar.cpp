@@ -17,7 +17,7 @@
 
 #include "core/request_error.hpp"
 #include "core/solve.hpp"
-#include "core/user_field/program.hpp"
+#include "program_checks.hpp"
 
 using namespace lienewton;
 
@@ -109,22 +109,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                           {"v", Eigen::MatrixXd::Ones(1, 3)},
                                           {"w", Eigen::MatrixXd::Ones(2, 3)},
                                           {"E", Eigen::MatrixXd(0, 0)}};
-  std::shared_ptr<const user_field::Program> program;
-  try {
-    program = user_field::compile(source, n, parameters);
-  } catch (const RequestError& e) {
-    if (e.field() != "g" || e.line() < 1 || e.column() < 1) std::abort();
-    return 0;
-  }
-  const Eigen::MatrixXd y = Eigen::MatrixXd::Identity(n, n) + 0.1 * Eigen::MatrixXd::Ones(n, n);
-  Eigen::MatrixXd g, dg;
-  program->eval(y, 0.25, g);
-  program->eval_with_tangent(y, 0.5, Eigen::MatrixXd::Ones(n, n), g, dg);
-  if (g.rows() != n || g.cols() != n || dg.rows() != n || dg.cols() != n) std::abort();
-  Eigen::MatrixXd us(2 * n, n), dgs;
-  us << Eigen::MatrixXd::Ones(n, n), Eigen::MatrixXd::Identity(n, n);
-  program->eval_along(y, 0.5, us, dgs);
-  if (dgs.rows() != 2 * n || dgs.cols() != n) std::abort();
+  if (!fuzz::check_program(source, n, parameters)) return 0;
   // One Newton iteration on SO(n) (n >= 2), through the request's own validation.
   if (n < 2) return 0;
   SolveRequest request;

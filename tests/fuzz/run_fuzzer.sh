@@ -15,8 +15,12 @@ cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Rel
 cmake --build "$build" -j"$(nproc)" --target lienewton_fuzz_request lienewton_fuzz_program lienewton_fuzz_program_grammar
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-mkdir "$scratch/request" "$scratch/program"
+mkdir "$scratch/request" "$scratch/program" "$scratch/grammar"
 "$build/tests/fuzz/../../bin/lienewton_fuzz_request" -runs="$runs" -max_len=4096 -timeout=10 "$scratch/request" "$root/tests/fuzz/corpus"
 # The program language: its inputs are cheap, so a fifth of the runs covers it.
 "$build/tests/fuzz/../../bin/lienewton_fuzz_program" -runs="$(( runs / 5 ))" -max_len=2048 -timeout=10 "$scratch/program" \
   "$root/tests/fuzz/program_corpus"
+# The same language, programs written from its grammar (fuzz_program_grammar.cpp): slower inputs (each runs a
+# Newton step), so a tenth of the runs.
+"$build/tests/fuzz/../../bin/lienewton_fuzz_program_grammar" -runs="$(( runs / 10 ))" -max_len=512 -timeout=10 \
+  "$scratch/grammar" "$root/tests/fuzz/program_grammar_corpus"
