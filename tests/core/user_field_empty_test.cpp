@@ -96,7 +96,7 @@ TEST(UserFieldErrors, ShapeOfGIsReportedOnTheLineOfG) {
 
 TEST(UserFieldErrors, AnInfiniteOrHugeIndexIsNamedAsWritten) {
   const RequestError inf = compile_error("g = y(1/0, 1)");
-  EXPECT_EQ(inf.column(), 7);
+  EXPECT_EQ(inf.column(), 8);  // at the index expression (its operator)
   EXPECT_NE(std::string(inf.what()).find("index inf is not a positive integer"), std::string::npos) << inf.what();
   const RequestError nan = compile_error("g = y(0/0, 1)");
   EXPECT_NE(std::string(nan.what()).find("index nan is not a positive integer"), std::string::npos) << nan.what();

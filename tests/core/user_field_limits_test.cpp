@@ -56,8 +56,11 @@ TEST(UserFieldLimits, LongChainsCompileAndRunOnA256KiBStack) {
       compiled = true;
     });
     ASSERT_TRUE(compiled);
-    if (source == &transposes) EXPECT_EQ(g, y - y.transpose());
-    if (source == &sum) EXPECT_EQ(g, 9000 * (y - y.transpose()));
+    if (source == &transposes) {
+      EXPECT_EQ(g, y - y.transpose());
+    } else if (source == &sum) {
+      EXPECT_EQ(g, 9000 * (y - y.transpose()));
+    }
   }
 }
 
