@@ -12,13 +12,13 @@ Eigen::MatrixXd ProblemSpec::start() const {
   return group_family(group).random(n, seed);
 }
 
-void validate(const ProblemSpec& problem) {
+void validate(const ProblemSpec& problem, int threads) {
   fields::check_bounds(problem);  // n
   validation::check_problem_domain(problem);
   validation::check_rigid_body(problem.rigid_body);
   validation::check_heavy_top(problem);
   validation::check_start_point(problem);
-  validation::check_user_field(problem);
+  validation::check_user_field(problem, threads);
 }
 
 std::shared_ptr<const user_field::Program> ProblemSpec::program() const {

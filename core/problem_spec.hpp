@@ -45,7 +45,7 @@ struct ProblemSpec {
 
 // Checks n, the group, that the problem is defined on it, the problem's parameters and z, and compiles a user's
 // program g (its errors name the line and column) and checks that g(z) lies in the group's algebra; throws
-// RequestError.
-void validate(const ProblemSpec& problem);
+// RequestError. threads: how many threads evaluate g at once (the workspace budget counts each).
+void validate(const ProblemSpec& problem, int threads = 1);
 
 }  // namespace lienewton

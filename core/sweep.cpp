@@ -116,7 +116,10 @@ void validate(const SweepRequest& req) {
     validation::invalid("shard", "shard must have count >= 1 and 0 <= index < count");
   validate(req.solver);
   for (Method m : req.methods) check_globalization(m, req.solver);
-  for (int n : req.n) validate(at_dimension(req.problem, n));
+  // Each n's cells run on up to `threads` threads at once, each with its own workspace for g.
+  const double cells = double(req.methods.size()) * double(req.h.size());
+  const int threads = static_cast<int>(std::min(double(resolve_thread_count(req.threads)), std::max(cells, 1.0)));
+  for (int n : req.n) validate(at_dimension(req.problem, n), threads);
 }
 
 std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard) {

@@ -32,8 +32,9 @@ void check_rigid_body(const RigidBodyParams& params);
 // HeavyTopParams::kBound in size, rotation a rotation; and no z for heavy-top, whose start they give.
 void check_heavy_top(const ProblemSpec& problem);
 // A user's program g: parameters well-named and finite, the program compiled for n (RequestError with its line
-// and column), g(z) in the group's algebra; parameters without g are refused.
-void check_user_field(const ProblemSpec& problem);
+// and column), its workspace on `threads` threads within user_field::kMaxWorkspaceBytes (413 naming g), g(z) in
+// the group's algebra; parameters without g are refused.
+void check_user_field(const ProblemSpec& problem, int threads = 1);
 // The problem's z, when given: the group's square size (n on SO(n)), finite and an element of the group (its not_an_element).
 void check_start_point(const ProblemSpec& problem);
 // y0, the iteration's start: z's size, finite, an element of the group and reachable from the problem's z (on SO(N):

@@ -23,7 +23,7 @@ HttpResponse error_response(const std::exception_ptr& error) {
     return res;
   } catch (const RequestError& e) {
     HttpResponse res;
-    res.status = e.kind() == RequestError::Kind::unprocessable ? 422 : 400;
+    res.status = e.kind() == RequestError::Kind::unprocessable ? 422 : e.kind() == RequestError::Kind::too_large ? 413 : 400;
     res.content_type = "application/json";
     res.body = dump(error_body(e));
     return res;

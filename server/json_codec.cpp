@@ -437,7 +437,12 @@ Limits Limits::unlimited() {
 
 std::string error_code(const RequestError& error) {
   if (auto fe = dynamic_cast<const FieldError*>(&error)) return fe->code();
-  return error.kind() == RequestError::Kind::unprocessable ? "unprocessable" : "invalid_field";
+  switch (error.kind()) {
+    case RequestError::Kind::unprocessable: return "unprocessable";
+    case RequestError::Kind::too_large: return "program_too_large";
+    case RequestError::Kind::invalid: break;
+  }
+  return "invalid_field";
 }
 
 json parse_body(std::string_view text) {

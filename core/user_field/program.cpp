@@ -5,6 +5,7 @@
 #include <bit>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -65,6 +66,15 @@ struct Program::Workspace {
 namespace {
 
 std::string size_text(Eigen::Index r, Eigen::Index c) { return std::to_string(r) + "\u00d7" + std::to_string(c); }
+
+// A number as a user wrote it: 3, 0.5, inf, -inf, nan (std::to_string writes 0.500000).
+std::string number_text(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", x);
+  return text;
+}
 
 // std::pow entry by entry: Eigen's vectorised pow trips GCC 12's false -Wuninitialized inside AVX-512 intrinsics.
 struct Pow {
@@ -364,6 +374,11 @@ void apply(const Instruction& ins, const std::vector<const MatrixXd*>& x, Matrix
       if (dx) *dout = (aux.array() * (*dx)[0]->array()).matrix();
       return;
     case Op::norm: {
+      if (a.size() == 0) {  // MATLAB: the norm of an empty matrix is 0, and so is its change
+        out(0, 0) = 0;
+        if (dx) (*dout)(0, 0) = 0;
+        return;
+      }
       if (a.rows() == 1 || a.cols() == 1) {
         const double r = a.norm();
         out(0, 0) = r;
@@ -435,7 +450,7 @@ class Compiler {
   }
 
   std::shared_ptr<const Program> run() {
-    int result = -1;
+    int result = -1, result_statement = -1;
     bool assigned_g = false;
     for (int st : s_.statements) {
       const Node& node = s_.nodes[static_cast<std::size_t>(st)];
@@ -444,13 +459,14 @@ class Compiler {
         names_[node.text] = v;
         if (node.text == "g") {
           result = v;
+          result_statement = st;
           assigned_g = true;
         } else if (!assigned_g) {
           result = -1;
         }
       } else {
         const int v = expr(st);
-        if (!assigned_g) result = v;
+        if (!assigned_g) result = v, result_statement = st;
       }
     }
     if (result < 0)
@@ -459,10 +475,17 @@ class Compiler {
     const int n = p_->n_;
     const std::size_t r = static_cast<std::size_t>(result);
     if (p_->rows_[r] != n || p_->cols_[r] != n)
-      fail_at(1, 1, "g must be n\u00d7n (" + size_text(n, n) + ", the size of y), got " +
+      fail(result_statement, "g must be n\u00d7n (" + size_text(n, n) + ", the size of y), got " +
                         size_text(p_->rows_[r], p_->cols_[r]));
     p_->result_ = result;
     drop_dead();
+    const auto shape = [&](int slot) {
+      return std::pair{p_->rows_[static_cast<std::size_t>(slot)], p_->cols_[static_cast<std::size_t>(slot)]};
+    };
+    p_->zeros_.try_emplace(shape(result), MatrixXd::Zero(n, n));
+    for (const Instruction& ins : p_->code_)
+      for (int i : ins.in)
+        if (!varies(i)) p_->zeros_.try_emplace(shape(i), MatrixXd::Zero(rows(i), cols(i)));
     p_->cost_ = 3.0 * cost_;
     p_->elements_ = total_elements_;
     return std::shared_ptr<const Program>(p_.release());
@@ -514,6 +537,7 @@ class Compiler {
     if (3.0 * cost_ > kMaxCost)
       fail(at, "the program is too costly: about " + std::to_string(static_cast<long long>(3.0 * cost_)) +
                    " operations per evaluation, at most " + std::to_string(static_cast<long long>(kMaxCost)));
+    poll();
     bool any_varies = false, any_timed = false;
     for (std::size_t i = 0; i < ins.in.size(); ++i) {
       any_varies = any_varies || varies(ins.in[i]);
@@ -568,12 +592,9 @@ class Compiler {
     return emit(op, {a, b}, r, c, double(r) * double(c) * (op == Op::epow ? 20 : 1), at);
   }
 
-  int binary(int at) {
-    const Node& nd = node(at);
-    const std::string& op = nd.text;
-    const int a = expr(nd.kids[0]);
-    if (op == "^") return power(at, a, nd.kids[1]);
-    const int b = expr(nd.kids[1]);
+  int binary(int at, int a, int b) {
+    const std::string& op = node(at).text;
+    if (op == "^") return power(at, a, b);
     if (op == "+" || op == "-")
       if (const int fused = fused_sum(a, b, op == "-", at); fused >= 0) return fused;
     if (op == "+") return elementwise(Op::add, a, b, at, "+");
@@ -651,8 +672,7 @@ class Compiler {
   }
 
   // a^p: a scalar power entrywise, a square matrix to a constant integer power.
-  int power(int at, int a, int p_node) {
-    const int p = expr(p_node);
+  int power(int at, int a, int p) {
     if (scalar(a) && scalar(p)) return elementwise(Op::epow, a, p, at, "^");
     if (!scalar(p)) fail(at, "in a^p, p must be a number (use .^ for entrywise powers)");
     if (rows(a) != cols(a)) fail(at, "a^p needs a square matrix, got " + size_text(rows(a), cols(a)) +
@@ -732,10 +752,10 @@ class Compiler {
     if (!fixed(s)) fail(arg, "indices must be constant (numbers, ranges such as 1:3, end, :)");
     for (Eigen::Index i = 0; i < value(s).size(); ++i) {
       const double x = value(s)(i);
-      if (x != std::floor(x) || x < 1)
-        fail(arg, "index must be a positive integer, got " + std::to_string(x));
+      if (!std::isfinite(x) || x != std::floor(x) || x < 1)
+        fail(arg, "index " + number_text(x) + " is not a positive integer");
       if (x > double(extent))
-        fail(arg, "index " + std::to_string(static_cast<long long>(x)) + " exceeds the size " +
+        fail(arg, "index " + number_text(x) + " exceeds the size " +
                       std::to_string(extent));
       out.push_back(static_cast<int>(x) - 1);
     }
@@ -864,7 +884,52 @@ class Compiler {
     return emit(Op::cross, {a, b}, rows(a), cols(a), 30, at);
   }
 
+  // Operators, transposes and unary signs chain without bound ((y - y')'' and so on, or y+y+...+y): they are
+  // compiled by an explicit stack, post-order, so the depth of C++ recursion is bounded by the parser's nesting
+  // limit (calls, brackets, parentheses), not by the program's length.
+  static bool chains(NodeKind kind) {
+    return kind == NodeKind::binary || kind == NodeKind::unary || kind == NodeKind::transpose;
+  }
   int expr(int at) {
+    if (!chains(node(at).kind)) return leaf(at);
+    struct Pending {
+      int at;
+      std::size_t next;  // the next operand to compile
+    };
+    std::vector<Pending> pending{{at, 0}};
+    std::vector<int> done;  // the slots of compiled operands, innermost last
+    while (!pending.empty()) {
+      poll();
+      Pending& top = pending.back();
+      const Node& nd = node(top.at);
+      if (top.next < nd.kids.size()) {
+        const int kid = nd.kids[top.next++];
+        if (chains(node(kid).kind)) pending.push_back({kid, 0});
+        else done.push_back(leaf(kid));
+        continue;
+      }
+      const int a = done[done.size() - nd.kids.size()];
+      const int b = nd.kids.size() == 2 ? done.back() : -1;
+      done.resize(done.size() - nd.kids.size());
+      done.push_back(combine(top.at, a, b));
+      pending.pop_back();
+    }
+    return done.back();
+  }
+
+  // A chained node from its operands' slots (b: -1 for one operand).
+  int combine(int at, int a, int b) {
+    const Node& nd = node(at);
+    if (nd.kind == NodeKind::binary) return binary(at, a, b);
+    if (nd.kind == NodeKind::transpose)
+      return transposed(emit(Op::transpose, {a}, cols(a), rows(a), double(rows(a)) * double(cols(a)), at), a);
+    if (nd.text == "+") return a;
+    const int out = emit(Op::neg, {a}, rows(a), cols(a), double(rows(a)) * double(cols(a)), at);
+    if (varies(a) && !scalar(a)) multiple_[out] = {a, -1.0};
+    return out;
+  }
+
+  int leaf(int at) {
     const Node& nd = node(at);
     switch (nd.kind) {
       case NodeKind::number: return constant(MatrixXd::Constant(1, 1, nd.value));
@@ -878,25 +943,20 @@ class Compiler {
         return constant(MatrixXd::Constant(1, 1, double(ends_.back())));
       case NodeKind::colon: fail(at, "':' alone selects everything only as an index, as in y(:,1)");
       case NodeKind::call: return call(at);
-      case NodeKind::binary: return binary(at);
-      case NodeKind::unary: {
-        const int a = expr(nd.kids[0]);
-        if (nd.text == "+") return a;
-        const int out = emit(Op::neg, {a}, rows(a), cols(a), double(rows(a)) * double(cols(a)), at);
-        if (varies(a) && !scalar(a)) multiple_[out] = {a, -1.0};
-        return out;
-      }
-      case NodeKind::transpose: {
-        const int a = expr(nd.kids[0]);
-        return transposed(emit(Op::transpose, {a}, cols(a), rows(a), double(rows(a)) * double(cols(a)), at), a);
-      }
       case NodeKind::range: return range(at);
       case NodeKind::matrix: return matrix(at);
+      case NodeKind::binary:
+      case NodeKind::unary:
+      case NodeKind::transpose: return expr(at);
       case NodeKind::assign:
       case NodeKind::row: break;
     }
     fail(at, "unexpected statement");
   }
+
+  // Compiling is work that a request's deadline, its client leaving or a shutdown may cut short: polled per node
+  // and per instruction (a folded constant may be a large product).
+  static void poll() { throw_if_cancelled(); }
 
   const Syntax& s_;
   std::unique_ptr<Program> p_;
@@ -928,6 +988,10 @@ void check_parameter(const std::string& name, const Eigen::MatrixXd& value) {
   if (!identifier) bad(field + ": a parameter's name must be a MATLAB name (a letter, then letters, digits or _)");
   if (name == "y" || name == "t" || name == "end" || name == "g")
     bad(field + ": y, t, g and end are the program's own names");
+  if (name == "pi" || is_function(name))
+    throw RequestError(RequestError::Kind::unprocessable, field,
+                       field + ": '" + name + "' is the language's " + (name == "pi" ? "constant" : "function") +
+                           " of that name; a parameter may not hide it (choose another name)");
   if (double(value.size()) > kMaxElements) bad(field + " is too large");
   if (!value.allFinite()) bad(field + " must have finite entries");
 }
@@ -943,7 +1007,7 @@ void Program::prepare(Workspace& ws) const {
   ws.tan.assign(slots, MatrixXd());
   ws.aux.assign(slots, MatrixXd());
   for (std::size_t s = 0; s < slots; ++s) {
-    ws.tan[s] = MatrixXd::Zero(rows_[s], cols_[s]);
+    if (varies_[s]) ws.tan[s] = MatrixXd::Zero(rows_[s], cols_[s]);
     if (varies_[s] || timed_[s]) ws.val[s].resize(rows_[s], cols_[s]);
   }
   // The slots are never resized again, so the instructions' operands are bound to them once.
@@ -954,7 +1018,9 @@ void Program::prepare(Workspace& ws) const {
       for (int i : ins.in) {
         const auto s = static_cast<std::size_t>(i);
         b.x.push_back(varies_[s] || timed_[s] ? &ws.val[s] : &constant_[s]);
-        b.dx.push_back(&ws.tan[s]);
+        // The values of t alone take no tangents.
+        const auto zero = zeros_.find({rows_[s], cols_[s]});
+        b.dx.push_back(varies_[s] ? &ws.tan[s] : zero == zeros_.end() ? nullptr : &zero->second);
       }
       const auto o = static_cast<std::size_t>(ins.out);
       b.out = &ws.val[o];
@@ -1045,12 +1111,14 @@ void Program::form_derivatives(Workspace& ws) const {
 namespace {
 // Direction d's tangent in a stacked matrix of tangents ((rows k) x cols).
 Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> direction(MatrixXd& stacked, Eigen::Index rows, Eigen::Index d) {
-  return {stacked.data() + rows * d, rows, stacked.cols(), Eigen::OuterStride<>(stacked.rows())};
+  // An empty value's tangents have no storage: no offset from its null data.
+  double* const data = stacked.size() == 0 ? stacked.data() : stacked.data() + rows * d;
+  return {data, rows, stacked.cols(), Eigen::OuterStride<>(stacked.rows())};
 }
 // The same memory as rows x (k cols), direction d's column j in column d + k j: a product from the left by a
 // value is one product of this wide matrix, as a product from the right is one of the stacked one.
-Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows) {
-  return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
+Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows, Eigen::Index k) {
+  return {stacked.data(), rows, stacked.cols() * k};  // k directions of an empty value are still k blocks wide
 }
 Eigen::Map<const MatrixXd> side_by_side(const Program::In& stacked, Eigen::Index rows) {
   return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
@@ -1094,7 +1162,7 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
       if (is_scalar(*b.x[0]) || is_scalar(*b.x[1])) break;
       if (varies(0)) out.noalias() = dx(0) * *b.x[1];
       else out.setZero();
-      if (varies(1)) side_by_side(out, r).noalias() += *b.x[0] * side_by_side(dx(1), rows_[slot(1)]);
+      if (varies(1)) side_by_side(out, r, k).noalias() += *b.x[0] * side_by_side(dx(1), rows_[slot(1)], k);
       return;
     case Op::emul:  // (A .* B)' = A' .* B + A .* B'
       if (!same_shape) break;
@@ -1110,7 +1178,7 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
   for (Eigen::Index d = 0; d < k; ++d) {
     for (std::size_t j = 0; j < ins.in.size(); ++j) {
       if (!varies(j)) {
-        ws.scratch_dx[j] = &ws.tan[slot(j)];  // zero
+        ws.scratch_dx[j] = b.dx[j];  // zero
         continue;
       }
       ws.scratch[j] = direction(dx(j), rows_[slot(j)], d);
@@ -1120,6 +1188,31 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
     apply(ins, b.x, *b.out, &ws.scratch_dx, &ws.scratch_out, *b.aux, true);
     direction(out, r, d) = ws.scratch_out;
   }
+}
+
+const MatrixXd& Program::tangent(const Workspace& ws, std::size_t s) const {
+  return varies_[s] ? ws.tan[s] : zeros_.at({rows_[s], cols_[s]});
+}
+
+double Program::workspace_bytes(int directions) const {
+  double entries = 0, varying = 0, largest = 0;
+  for (std::size_t s = 0; s < rows_.size(); ++s) {
+    const double size = double(rows_[s]) * double(cols_[s]);
+    if (varies_[s] || timed_[s]) entries += size;
+    if (varies_[s]) varying += size;
+    largest = std::max(largest, size);
+  }
+  entries += varying;  // the tangents
+  const auto size_of = [&](int s) { return double(rows_[static_cast<std::size_t>(s)]) * double(cols_[static_cast<std::size_t>(s)]); };
+  for (const std::vector<Instruction>* code : {&code_, &time_code_})
+    for (const Instruction& ins : *code) {
+      if (ins.op == Op::fn) entries += size_of(ins.out);
+      if (ins.op == Op::left_div) entries += size_of(ins.in[0]);
+      if (ins.op == Op::right_div) entries += size_of(ins.in[1]);
+    }
+  const double stacked = varying * double(directions);
+  entries += (stacked <= kMaxStackedElements ? stacked : 0) + largest;  // and one direction's scratch
+  return entries * double(sizeof(double));
 }
 
 // The value of slot r after a run.
@@ -1139,7 +1232,7 @@ void Program::eval_with_tangent(const In& y, double t, const In& dy, MatrixXd& g
   with_workspace([&](Workspace& ws) {
     run(y, t, &dy, ws);
     g = result(ws);
-    dg = ws.tan[static_cast<std::size_t>(result_)];
+    dg = tangent(ws, static_cast<std::size_t>(result_));
   });
 }
 
@@ -1164,14 +1257,14 @@ void Program::eval_along(const In& y, double t, const In& us, MatrixXd& dgs) con
         dy.noalias() = y * us.middleRows(d * n, n);
         const In in(dy);
         run(y, t, &in, ws);
-        dgs.middleRows(d * n, n) = ws.tan[static_cast<std::size_t>(result_)];
+        dgs.middleRows(d * n, n) = tangent(ws, static_cast<std::size_t>(result_));
       }
       return;
     }
     run(y, t, nullptr, ws);
     if (!ws.holds_derivatives) form_derivatives(ws);
     const auto ys = static_cast<std::size_t>(y_slot_), r = static_cast<std::size_t>(result_);
-    side_by_side(ws.stacked[ys], n).noalias() = y * side_by_side(us, n);
+    side_by_side(ws.stacked[ys], n, k).noalias() = y * side_by_side(us, n);
     for (std::size_t i = 0; i < code_.size(); ++i) {
       if (cancellation_requested()) throw Cancelled{};
       tangents_along(i, k, ws);

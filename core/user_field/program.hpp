@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lienewton::user_field {
@@ -26,6 +27,9 @@ inline constexpr double kMaxElements = 1e6;      // entries of one value
 inline constexpr double kMaxTotalElements = 4e6; // entries of all values together (and as many tangents)
 inline constexpr double kMaxCost = 2e9;          // estimated flops of one evaluation of g and its tangent
 inline constexpr std::size_t kMaxParameters = 64;
+// Bytes of evaluation workspace one request may hold: a program's workspace_bytes times the threads that evaluate
+// it at once (a sweep's threads). Beyond it the request is refused (413, field g).
+inline constexpr double kMaxWorkspaceBytes = 128.0 * 1024 * 1024;
 
 class Program;
 
@@ -54,6 +58,10 @@ class Program {
   void eval_along(const In& y, double t, const In& us, Eigen::MatrixXd& dgs) const;
   std::size_t instructions() const;
   double cost() const { return cost_; }  // estimated flops of eval_with_tangent
+  // Bytes one evaluating thread's workspace holds: the values of the slots that depend on y or t, the tangents of
+  // those that depend on y, what a tangent pass keeps (f'(a), inverses), and eval_along's tangents of `directions`
+  // directions. Constants are the program's own, shared by all threads, and not counted.
+  double workspace_bytes(int directions) const;
 
   struct Workspace;
 
@@ -67,6 +75,8 @@ class Program {
   // Entries of the tangents of all directions together above which eval_along takes one direction at a time.
   static constexpr double kMaxStackedElements = 1 << 21;
   void prepare(Workspace& ws) const;
+  // The tangent of slot s after a run: its own, or a shared zero for a slot that does not depend on y.
+  const Eigen::MatrixXd& tangent(const Workspace& ws, std::size_t s) const;
   const Eigen::MatrixXd& result(const Workspace& ws) const;
   template <class F>
   void with_workspace(F&& f) const;
@@ -78,6 +88,8 @@ class Program {
   std::vector<int> rows_, cols_;
   std::vector<bool> varies_, timed_;
   std::vector<Eigen::MatrixXd> constant_;
+  // The tangent of every slot that does not depend on y, by size: zero, read by the instructions that take it.
+  std::map<std::pair<int, int>, Eigen::MatrixXd> zeros_;
   int y_slot_ = 0, t_slot_ = 0, result_ = 0;
   double cost_ = 0;
   double elements_ = 0;  // entries of all slots

@@ -18,6 +18,7 @@
 #include "core/user_field/user_vector_field.hpp"
 #include "gtest_printers.hpp"
 #include "paper_request.hpp"
+#include "program_error.hpp"
 #include "residual_oracle.hpp"
 
 namespace lienewton {
@@ -283,17 +284,6 @@ TEST(UserField, ValueOffSe3IsRefusedNamingG) {
       EXPECT_NE(std::string(e.what()).find("algebra of SE(3)"), std::string::npos) << e.what();
     }
   }
-}
-
-// The request error a program gets: 422 naming g, with a position.
-RequestError compile_error(const std::string& source, int n = 3, const user_field::Parameters& p = {}) {
-  try {
-    user_field::compile(source, n, p);
-  } catch (const RequestError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "compiled: " << source.substr(0, 80);
-  return RequestError(RequestError::Kind::invalid, "", "");
 }
 
 TEST(UserField, ErrorsNameTheLineColumnAndSpeakMatlab) {

@@ -69,6 +69,34 @@ TEST_F(UserFieldRoutes, ProgramFaultsAnswer422WithLineAndColumn) {
   EXPECT_EQ(json::parse(bad_value->body)["error"]["field"], "parameters.J");
 }
 
+// The language's limits as HTTP answers: a workspace beyond the per-request budget is 413 naming g, a parameter
+// that would hide pi or a function 422 naming it, an empty matrix's norm an answer (the crash).
+TEST_F(UserFieldRoutes, ProgramLimitsAnswerWithTheirStatusAndField) {
+  auto c = client();
+  const std::string tilings =
+      R"j("g":"a = y(ones(1,1000), ones(1,1000)); b = y(2*ones(1,1000), ones(1,1000)); )j"
+      R"j(c = y(3*ones(1,1000), ones(1,1000)); g = (y - y')*(trace(a) + trace(b) + trace(c))")j";
+  auto big = c.Post("/api/v1/sweep", "{" + tilings + R"(,"methods":["newton-group"],"n":[3],"h":[0.1,0.2,0.3,0.4],)"
+                    R"("threads":4})", "application/json");
+  ASSERT_TRUE(big);
+  EXPECT_EQ(big->status, 413) << big->body;
+  EXPECT_EQ(json::parse(big->body)["error"]["field"], "g");
+  auto pi = c.Post("/api/v1/solve", R"j({"g":"g = (y - y')*pi","parameters":{"pi":3},"h":0.5})j", "application/json");
+  ASSERT_TRUE(pi);
+  EXPECT_EQ(pi->status, 422) << pi->body;
+  EXPECT_EQ(json::parse(pi->body)["error"]["field"], "parameters.pi");
+  auto norm = c.Post("/api/v1/solve", R"j({"g":"g = (y - y')*(1 + norm(zeros(0)) + norm(y(:,[])))","h":0.5})j",
+                     "application/json");
+  ASSERT_TRUE(norm);
+  EXPECT_EQ(norm->status, 200) << norm->body;
+  auto inf = c.Post("/api/v1/solve", R"j({"g":"a = y;\ng = y(1/0, 1)","h":0.5})j", "application/json");
+  ASSERT_TRUE(inf);
+  EXPECT_EQ(inf->status, 422);
+  const json e = json::parse(inf->body)["error"];
+  EXPECT_EQ(e["line"], 2);
+  EXPECT_NE(e["message"].get<std::string>().find("index inf"), std::string::npos) << inf->body;
+}
+
 TEST_F(UserFieldRoutes, EveryRouteThatTakesAProblemTakesG) {
   auto c = client();
   auto sweep = c.Post("/api/v1/sweep", "{" + kSine + R"(,"methods":["newton-group"],"n":[3,4],"h":[0.25,0.5]})",
