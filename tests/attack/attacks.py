@@ -872,6 +872,52 @@ def deadline_within_a_tenth(t):
     return f"504 after {secs:.2f} s"
 
 
+# The largest legal kind of program: three 1000 x 1000 tilings of y, about 56 MB of workspace per evaluating thread
+# (core/user_field: a request may hold at most 128 MiB), iterated until the battery's 3 s deadline.
+WORST_CASE_SOLVE = json.dumps({
+    "g": "a = y(ones(1,1000), ones(1,1000)); b = y(2*ones(1,1000), ones(1,1000)); "
+         "c = y(3*ones(1,1000), ones(1,1000)); g = (y - y')*(trace(a) + trace(b) + trace(c))",
+    "n": 3, "h": 0.5, "method": "fixed-point", "tol": 1e-16, "max_iterations": 10000})
+WORKSPACE_BUDGET = 128 << 20  # bytes per request: user_field::kMaxWorkspaceBytes
+
+
+def server_rss_bytes(server_bin):
+    """Resident bytes summed over the running processes of server_bin."""
+    exe = os.path.realpath(server_bin)
+    total = 0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if os.readlink(f"/proc/{pid}/exe") != exe:
+                continue
+            with open(f"/proc/{pid}/statm") as f:
+                total += int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+        except OSError:
+            continue
+    return total
+
+
+def six_worst_case_programs(t, server_bin):
+    # Six of the largest legal programs at once (three per address, each address's limit) grow the servers' memory
+    # by at most six budgets, and they answer: each request's workspace is bounded before it runs.
+    baseline = server_rss_bytes(server_bin)
+    results, peak = [], [baseline]
+    sources = ["127.0.0.1"] * 3 + ["127.0.0.2"] * 3
+    threads = [threading.Thread(target=lambda src=src: results.append(quietly_status(
+        Target(f"http://{t.host}:{t.port}", t.mode, source=src), "POST", "/api/v1/solve", WORST_CASE_SOLVE)))
+        for src in sources]
+    for th in threads:
+        th.start()
+    while any(th.is_alive() for th in threads):
+        peak.append(server_rss_bytes(server_bin))
+        time.sleep(0.05)
+    growth = max(peak) - baseline
+    detail = f"answers {sorted(map(str, results))}, RSS {baseline >> 20} MiB, peak +{growth >> 20} MiB"
+    expect(all(status in (200, 504, 429, 503) for status in results), detail)
+    expect(growth <= 6 * WORKSPACE_BUDGET + (64 << 20), f"memory beyond six budgets: {detail}")
+    expect(t.livez_seconds() is not None, "server not alive afterwards")
+    return detail
+
+
 def sigterm_after_abandoned_sweeps(t, server_bin):
     # The abandoned sweeps against a server of its own with the default deadlines (120 s for sweeps): SIGTERM
     # 1 s after they started (their clients leave 1 s later) ends the process within its documented 10 s.
@@ -1171,8 +1217,8 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
            bad_continuation, bad_predictor, deadline_inside_continuation, bad_multistart,
            deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address, deadline_within_a_tenth]
-# Attacks that measure the servers' CPU: they need --server-bin (both modes).
-CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests]
+# Attacks that measure the servers' processes (CPU, memory): they need --server-bin (both modes).
+CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests, six_worst_case_programs]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work, descriptor_flood, sweep_timeout_ends_sweep,
                    sigterm_after_abandoned_sweeps]  # direct mode only: they start servers
 # The page's headers, ranges and banner hold with and without the front; the front's own refusals and its

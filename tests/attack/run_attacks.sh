@@ -3,7 +3,7 @@
 #   tests/attack/run_attacks.sh [--via-nginx] [SERVER_BIN]     (default build/bin/lienewton-server)
 # Direct: one server with 3 s request and sweep deadlines. --via-nginx: deploy/run_local.sh starts nginx with
 # deploy/nginx/lienewton.conf in front of 2 replicas, and the same battery runs through nginx.
-# Loopback only; the whole run is bounded (timeout below).
+# Loopback only; the whole run is bounded (timeout below). LIENEWTON_ATTACK_STACK_KIB: see the direct server below.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 mode=direct
@@ -19,7 +19,10 @@ if [ "$mode" = nginx ]; then
   LIENEWTON_REQUEST_TIMEOUT=3 LIENEWTON_SWEEP_TIMEOUT=3 "$root/deploy/run_local.sh" --port "$port" --replicas 2 --server-bin "$server_bin" \
     >"$log/front.log" 2>&1 &
 else
-  "$server_bin" --host 127.0.0.1 --port "$port" --request-timeout 3 --sweep-timeout 3 --web-root "$root/web" >"$log/server.log" 2>&1 &
+  # LIENEWTON_ATTACK_STACK_KIB: the server's stack limit (its threads' too), e.g. 1024: no program may need more.
+  (if [ -n "${LIENEWTON_ATTACK_STACK_KIB:-}" ]; then ulimit -s "$LIENEWTON_ATTACK_STACK_KIB"; fi
+   exec "$server_bin" --host 127.0.0.1 --port "$port" --request-timeout 3 --sweep-timeout 3 --web-root "$root/web") \
+    >"$log/server.log" 2>&1 &
 fi
 pid=$!
 for _ in $(seq 100); do curl -sf -m 1 "http://127.0.0.1:$port/livez" >/dev/null && break; sleep 0.1; done

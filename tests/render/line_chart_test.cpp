@@ -19,9 +19,9 @@ LineChart two_series() {
                   .x = {.label = "N", .scale = AxisScale::log, .unit = AxisUnit::plain, .min_step = 0},
                   .y = {.label = "time", .scale = AxisScale::log, .unit = AxisUnit::seconds, .min_step = 0},
                   .series = {}, .legend_title = {}, .legend = LegendPlace::inside};
-  chart.series.push_back({"exact", series_style(0), {3, 8, 16, 32, 64, 100}, {1e-6, 1e-5, 6e-5, 4e-4, 3e-3, 1.1e-2}, {}});
+  chart.series.push_back({"exact", series_style(0), {3, 8, 16, 32, 64, 100}, {1e-6, 1e-5, 6e-5, 4e-4, 3e-3, 1.1e-2}, {}, {}});
   chart.series.push_back({"finite-difference", series_style(1), {3, 8, 16, 32, 64, 100},
-                          {3e-6, 1e-3, 2e-2, 0.4, 2.0, 9.0}, {}});
+                          {3e-6, 1e-3, 2e-2, 0.4, 2.0, 9.0}, {}, {}});
   return chart;
 }
 
