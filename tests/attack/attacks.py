@@ -773,19 +773,27 @@ PROGRAM_SWEEP = json.dumps({"g": "u = sin(y)*(2*y - 5*y^2); g = u - u'", "n": li
                             "methods": ["newton-group"], "differential": "finite-difference", "max_iterations": 10000})
 
 
-def server_cpu_ticks(server_bin):
-    """utime + stime (clock ticks) summed over the running processes of server_bin (the replicas behind nginx)."""
+def server_proc_files(server_bin, name):
+    """The text of /proc/<pid>/<name> of every running process of server_bin (the replicas behind nginx)."""
     exe = os.path.realpath(server_bin)
-    ticks = 0
+    texts = []
     for pid in filter(str.isdigit, os.listdir("/proc")):
         try:
             if os.readlink(f"/proc/{pid}/exe") != exe:
                 continue
-            with open(f"/proc/{pid}/stat") as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            ticks += int(fields[11]) + int(fields[12])  # utime, stime (fields 14 and 15 of proc(5))
+            with open(f"/proc/{pid}/{name}") as f:
+                texts.append(f.read())
         except OSError:
             continue
+    return texts
+
+
+def server_cpu_ticks(server_bin):
+    """utime + stime (clock ticks) summed over the running processes of server_bin."""
+    ticks = 0
+    for text in server_proc_files(server_bin, "stat"):
+        fields = text.rsplit(")", 1)[1].split()  # after the command name, which may hold spaces
+        ticks += int(fields[11]) + int(fields[12])  # utime, stime (fields 14 and 15 of proc(5))
     return ticks
 
 
@@ -883,17 +891,7 @@ WORKSPACE_BUDGET = 128 << 20  # bytes per request: user_field::kMaxWorkspaceByte
 
 def server_rss_bytes(server_bin):
     """Resident bytes summed over the running processes of server_bin."""
-    exe = os.path.realpath(server_bin)
-    total = 0
-    for pid in filter(str.isdigit, os.listdir("/proc")):
-        try:
-            if os.readlink(f"/proc/{pid}/exe") != exe:
-                continue
-            with open(f"/proc/{pid}/statm") as f:
-                total += int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
-        except OSError:
-            continue
-    return total
+    return sum(int(t.split()[1]) for t in server_proc_files(server_bin, "statm")) * os.sysconf("SC_PAGE_SIZE")
 
 
 def six_worst_case_programs(t, server_bin):
