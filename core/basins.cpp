@@ -8,6 +8,7 @@
 
 #include "basin_map.hpp"
 #include "group_registry.hpp"
+#include "parallel_for.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -63,6 +64,9 @@ void validate(const BasinRequest& req) {
   SolveRequest equation = req.solve;
   equation.y0.reset();  // every pixel has its own start
   validate(equation);
+  if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
+  // The map's pixels run on up to `threads` threads at once, each with its own workspace for g.
+  validate(equation.problem, resolve_thread_count(req.threads));
   const int n = dimension_of(req);
   const GroupFamily& family = family_of(req);
   const int dim = family.algebra_dim(n);
@@ -92,7 +96,6 @@ void validate(const BasinRequest& req) {
   const Eigen::VectorXd b1 = direction(req.b1, dim, 0), b2 = direction(req.b2, dim, 1);
   if (std::abs(b1.dot(b2)) > kParallelCosine)
     validation::unprocessable(req.b2 ? "b2" : "b1", "b1 and b2 are parallel: they span no plane");
-  if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
   if (req.shard && !(req.shard->count >= 1)) validation::invalid("shard.count", "shard.count must be at least 1");
   if (req.shard && !(req.shard->index >= 0 && req.shard->index < req.shard->count))
     validation::unprocessable("shard.index", "shard.index must be in [0, shard.count)");

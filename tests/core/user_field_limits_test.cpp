@@ -12,11 +12,14 @@
 #include <functional>
 #include <string>
 
+#include "core/basins.hpp"
 #include "core/cancellation.hpp"
 #include "core/groups/son_group.hpp"
 #include "core/request_error.hpp"
 #include "core/sweep.hpp"
 #include "core/user_field/program.hpp"
+#include "core/work_precision.hpp"
+#include "core/parallel_for.hpp"
 
 namespace lienewton {
 namespace {
@@ -141,26 +144,57 @@ TEST(UserFieldLimits, WorkspaceIsWhatTheProgramReports) {
   EXPECT_EQ(with_constant->workspace_bytes(3), without->workspace_bytes(3));
 }
 
-TEST(UserFieldLimits, ASweepWhoseWorkspacesExceedTheBudgetIsRefusedNamingG) {
-  // Three 1000x1000 tilings of y: legal alone (about 56 MB per evaluating thread), not on four threads at once.
-  SweepRequest req;
-  req.problem.g =
-      "a = y(ones(1,1000), ones(1,1000)); b = y(2*ones(1,1000), ones(1,1000)); c = y(3*ones(1,1000), ones(1,1000));"
-      "g = (y - y')*(trace(a) + trace(b) + trace(c))";
-  req.methods = {Method::newton_group};
-  req.n = {3};
-  req.h = {0.1, 0.2, 0.3, 0.4};
-  req.threads = 4;
+// Three 1000x1000 tilings of y: legal alone (about 56 MB per evaluating thread), not on four threads at once.
+constexpr const char* kThreeTilings =
+    "a = y(ones(1,1000), ones(1,1000)); b = y(2*ones(1,1000), ones(1,1000)); c = y(3*ones(1,1000), ones(1,1000));"
+    "g = (y - y')*(trace(a) + trace(b) + trace(c))";
+
+// The message of the 413 naming g that validating the request must raise ("" when it raised none).
+std::string too_large_for_g(const std::function<void()>& validate_request) {
   try {
-    validate(req);
+    validate_request();
     ADD_FAILURE() << "validated";
   } catch (const RequestError& e) {
     EXPECT_EQ(e.kind(), RequestError::Kind::too_large);
     EXPECT_EQ(e.field(), "g");
-    EXPECT_NE(std::string(e.what()).find("4 threads"), std::string::npos) << e.what();
+    return e.what();
   }
+  return "";
+}
+
+TEST(UserFieldLimits, ASweepWhoseWorkspacesExceedTheBudgetIsRefusedNamingG) {
+  SweepRequest req;
+  req.problem.g = kThreeTilings;
+  req.methods = {Method::newton_group};
+  req.n = {3};
+  req.h = {0.1, 0.2, 0.3, 0.4};
+  req.threads = 4;
+  const std::string message = too_large_for_g([&] { validate(req); });
+  EXPECT_NE(message.find("4 threads"), std::string::npos) << message;
   req.threads = 1;
   EXPECT_NO_THROW(validate(req));
+}
+
+// Basin maps and work-precision diagrams evaluate g on several threads too: the budget counts them.
+TEST(UserFieldLimits, BasinMapsAndWorkPrecisionCountTheirThreads) {
+  BasinRequest basins;
+  basins.solve.problem.g = kThreeTilings;
+  basins.size = 4;
+  basins.threads = 4;
+  too_large_for_g([&] { validate(basins); });
+  basins.threads = 1;
+  EXPECT_NO_THROW(validate(basins));
+
+  WorkPrecisionRequest wp;
+  wp.problem.g = kThreeTilings;
+  wp.choices = {{Integrator::implicit_euler, Method::newton_group, Differential::exact},
+                {Integrator::dirk_cg2, Method::newton_group, Differential::exact}};
+  wp.h = {0.25, 0.125};
+  // Four runs on every core at once: beyond the budget where more than two threads run them.
+  if (std::min(resolve_thread_count(0), 4) > 2)
+    too_large_for_g([&] { validate(wp); });
+  else
+    EXPECT_NO_THROW(validate(wp));
 }
 
 }  // namespace
