@@ -136,7 +136,13 @@ TEST(UserFieldLimits, WorkspaceIsWhatTheProgramReports) {
   });
   ASSERT_GT(measured, 0);
   EXPECT_GT(measured, reported / 2) << "reported " << reported << ", measured " << measured;
-  EXPECT_LT(measured, reported * 2) << "reported " << reported << ", measured " << measured;
+#if defined(LIENEWTON_SANITIZED)
+  // AddressSanitizer's allocator adds redzones and shadow to every block and keeps freed ones in quarantine.
+  constexpr double kAllocatorOverhead = 4;
+#else
+  constexpr double kAllocatorOverhead = 2;
+#endif
+  EXPECT_LT(measured, reported * kAllocatorOverhead) << "reported " << reported << ", measured " << measured;
   // Constants are the program's, not the workspace's: a large constant operand adds nothing per thread.
   const auto with_constant = user_field::compile("c = ones(500); a = y(ones(1,500), ones(1,500)) + c;"
                                                  "g = (y - y')*trace(a)", 3, {});
