@@ -66,7 +66,7 @@ void validate(const BasinRequest& req) {
   validate(equation);
   if (req.threads < 0) validation::invalid("threads", "threads must be >= 0");
   // The map's pixels run on up to `threads` threads at once, each with its own workspace for g.
-  validate(equation.problem, resolve_thread_count(req.threads));
+  validation::check_workspace(equation.problem, resolve_thread_count(req.threads));
   const int n = dimension_of(req);
   const GroupFamily& family = family_of(req);
   const int dim = family.algebra_dim(n);

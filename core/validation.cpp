@@ -68,6 +68,18 @@ void check_heavy_top(const ProblemSpec& problem) {
     unprocessable("z", "heavy-top starts at heavy_top.rotation and heavy_top.omega: give those instead of z");
 }
 
+void check_workspace(const ProblemSpec& problem, int threads) {
+  if (!problem.g) return;
+  const double bytes = problem.program()->workspace_bytes(group_family(problem.group).algebra_dim(problem.n)) * threads;
+  if (bytes > user_field::kMaxWorkspaceBytes)
+    throw RequestError(RequestError::Kind::too_large, "g",
+                       "g's evaluation would hold " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+                           " MiB of workspace (" + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s") +
+                           "), more than the limit of " +
+                           std::to_string(static_cast<long long>(user_field::kMaxWorkspaceBytes / (1 << 20))) +
+                           " MiB per request: use smaller intermediate values" + (threads > 1 ? " or fewer threads" : ""));
+}
+
 void check_user_field(const ProblemSpec& problem, int threads) {
   if (!problem.g) {
     if (!problem.parameters.empty()) unprocessable("parameters", "parameters are read by a program: give g too");
@@ -78,14 +90,7 @@ void check_user_field(const ProblemSpec& problem, int threads) {
   for (const auto& [name, value] : problem.parameters) user_field::check_parameter(name, value);
   const GroupFamily& family = group_family(problem.group);
   const auto program = problem.program();
-  const double bytes = program->workspace_bytes(family.algebra_dim(problem.n)) * threads;
-  if (bytes > user_field::kMaxWorkspaceBytes)
-    throw RequestError(RequestError::Kind::too_large, "g",
-                       "g's evaluation would hold " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
-                           " MiB of workspace (" + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s") +
-                           "), more than the limit of " +
-                           std::to_string(static_cast<long long>(user_field::kMaxWorkspaceBytes / (1 << 20))) +
-                           " MiB per request: use smaller intermediate values" + (threads > 1 ? " or fewer threads" : ""));
+  check_workspace(problem, threads);
   // A program whose value at the start is off the algebra is wrong everywhere in practice: say so before solving,
   // when one evaluation is cheap (a sweep validates every n); otherwise the run's own check names g.
   constexpr double kCheapFlops = 1e8;

@@ -35,6 +35,9 @@ void check_heavy_top(const ProblemSpec& problem);
 // and column), its workspace on `threads` threads within user_field::kMaxWorkspaceBytes (413 naming g), g(z) in
 // the group's algebra; parameters without g are refused.
 void check_user_field(const ProblemSpec& problem, int threads = 1);
+// A valid problem's program within user_field::kMaxWorkspaceBytes of workspace on `threads` evaluating threads
+// (413 naming g); nothing for a built-in problem. For requests that validate the problem for one thread first.
+void check_workspace(const ProblemSpec& problem, int threads);
 // The problem's z, when given: the group's square size (n on SO(n)), finite and an element of the group (its not_an_element).
 void check_start_point(const ProblemSpec& problem);
 // y0, the iteration's start: z's size, finite, an element of the group and reachable from the problem's z (on SO(N):

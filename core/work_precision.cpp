@@ -159,8 +159,8 @@ void validate(const WorkPrecisionRequest& request) {
                         "choices x " + std::string(req.tolerances.empty() ? "h" : "tolerances") + " must be at most " +
                             std::to_string(kMaxRuns) + " runs");
   // The runs go on up to every core at once, each with its own workspace for g.
-  validate(req.problem, static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(resolve_thread_count(0)),
-                                                               req.choices.size() * runs)));
+  const std::size_t threads = std::min(static_cast<std::size_t>(resolve_thread_count(0)), req.choices.size() * runs);
+  validation::check_workspace(req.problem, static_cast<int>(threads));
   for (std::size_t k = 0; k < runs; ++k) validate(run_request(req, req.choices.front(), k));
   for (const WorkPrecisionChoice& c : req.choices) validate(run_request(req, c, 0));
   for (const WorkPrecisionChoice& c : req.choices) check_globalization(c.method, req.solver);
