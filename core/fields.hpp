@@ -63,7 +63,9 @@ struct IntegerField {
   std::string message(const std::string& path, long long cap = std::numeric_limits<long long>::max()) const;
 };
 
-inline constexpr NumberField h{"h", 0.0, 1e6, true, kNoDefault, "step size"};
+inline constexpr NumberField h{"h", 0.0, 1e6, true, kNoDefault,
+                               "step size (integrate: the first step tried when adaptive; absent, 0.1 or less as "
+                               "the field's time scale asks, docs/integrators.md)"};
 inline constexpr NumberField tol{"tol", 1e-16, 1.0, false, 1e-13, "absolute tolerance on ||f||"};
 inline constexpr NumberField t_end{"t_end", 0.0, 1e9, true, 1.0, "end time (capped by --max-t-end)"};
 inline constexpr IntegerField n{"n", 2, 100000, 3, "matrix size N (capped by --max-n)"};  // 1e5: beyond any memory

@@ -5,8 +5,9 @@
 #include "cpu_clock.hpp"
 #include "group_registry.hpp"
 #include "reference_solution.hpp"
-#include "rkmk_tableau.hpp"
+#include "integrators/methods.hpp"
 #include "solvers/newton_step.hpp"
+#include "time_scale.hpp"
 #include "validation.hpp"
 
 namespace lienewton {
@@ -14,29 +15,66 @@ namespace {
 
 constexpr double kMaxSteps = 1e5;
 
+// The solver options an integrator's steps do not use are refused rather than ignored. A DIRK method solves each
+// stage as an equation of (1.1) by run_method, which takes them all; an implicit RKMK method solves its coupled
+// stage system by its own Newton (dense LU, stopping on h ||F||, rkmk_stages.hpp); an explicit one solves nothing.
+// No integrator's stages start from seeded starts: each needs the root continued from its own start.
+void check_stage_options(const IntegrateRequest& req) {
+  const SolverOptions& o = req.solver;
+  const std::string name(to_string(req.integrator));
+  if (o.multistart > 0)
+    validation::invalid("multistart", "integrate's stages take the root continued from their start, never one from "
+                                      "seeded starts: multistart applies to solve and sweep");
+  const integrators::Form form = integrators::tableau_of(req.integrator).form;
+  if (form == integrators::Form::dirk_crouch_grossman) return;
+  const std::string why = form == integrators::Form::explicit_rkmk
+                              ? name + " is explicit: its steps solve no equation"
+                              : name + " solves its coupled stage system by its own Newton (dense LU, stopping on "
+                                       "h ||F||)";
+  const auto refuse = [&](const char* field) {
+    validation::invalid(field, why + "; " + field + " applies to the DIRK integrators' stage equations");
+  };
+  if (o.globalization != Globalization::none) refuse("globalization");
+  if (o.watchdog) refuse("watchdog");
+  if (o.linear_solver == LinearSolver::gmres) refuse("linear_solver");
+  if (o.stopping != Stopping::residual) refuse("stopping");
+}
+
 }  // namespace
+
+void resolve_defaults(IntegrateRequest& req) {
+  if (req.h) return;
+  validate(req.problem);
+  validation::check(fields::t_end, req.t_end, "t_end");
+  req.h = default_step(req.problem, req.t_end, kMaxSteps);
+}
 
 void validate(const IntegrateRequest& req) {
   validate(req.problem);
-  validation::check(fields::h, req.h, "h");
+  if (!req.h) validation::invalid("h", "h is not resolved (resolve_defaults)");
+  const double h = *req.h;
+  validation::check(fields::h, h, "h");
   validation::check(fields::t_end, req.t_end, "t_end");
-  if (req.h > req.t_end) validation::invalid("h", "h must not exceed t_end");
-  if (req.t_end / req.h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
+  if (h > req.t_end) validation::invalid("h", "h must not exceed t_end");
+  if (req.t_end / h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
   if (req.rtol) validation::check_tolerance(fields::rtol, *req.rtol, "rtol");
   if (req.atol) validation::check_tolerance(fields::atol, *req.atol, "atol");
   validation::check(fields::max_steps, req.max_steps, "max_steps");
   validate(req.solver);
   check_globalization(req.solver.method, req.solver);
+  check_stage_options(req);
   if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
   // An implicit RKMK method's Newton factors its s q x s q stage system densely: as large as the dense Newton
   // step of a single equation goes (beyond it the time and memory grow as (s q)^3 and (s q)^2).
-  if (rkmk_tableau(req.integrator) && req.problem.n > kKrylovThreshold)
+  if (integrators::tableau_of(req.integrator).form == integrators::Form::implicit_rkmk && req.problem.n > kKrylovThreshold)
     validation::invalid("integrator", std::string(to_string(req.integrator)) +
                                           " solves its coupled stage system densely: n must be at most " +
                                           std::to_string(kKrylovThreshold));
 }
 
-IntegrateResult integrate(const IntegrateRequest& req, const StepCallback& on_step) {
+IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& on_step) {
+  IntegrateRequest req = request;
+  resolve_defaults(req);
   validate(req);
   const Eigen::MatrixXd y0 = req.problem.start();
   IntegrateResult res = group_family(req.problem.group).integrate(req, y0, on_step);

@@ -17,12 +17,14 @@ namespace lienewton {
 struct IntegrateRequest {
   ProblemSpec problem{.kind = ProblemKind::rigid_body};  // z is y(0)
   SolverOptions solver{};  // for every stage equation (include_iterates is not used)
-  double h = 0.1;
+  // The step (adaptive steps: the first one tried). Absent: default_step() of the problem's time scale, resolved by
+  // resolve_defaults() before anything runs.
+  std::optional<double> h{};
   double t_end = 1.0;
   Integrator integrator = Integrator::implicit_euler;
   // Where each stage's first solve starts: lie-euler (default) at the explicit Lie-Euler value, the tangent of the
   // stage's branch of roots at h = 0; none at Z_i, as the paper starts at y_0 = z. Either way the stage's root must
-  // be the one continued from Z_i (core/requests_on_group.hpp).
+  // be the one continued from Z_i (core/integrators/stepper.hpp).
   Predictor predictor = Predictor::lie_euler;
   int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none)
   bool reference = true;              // compute the reference solution and the global error
@@ -73,6 +75,8 @@ struct IntegrateResult {
 
 using StepCallback = std::function<bool(const StepRecord&)>;
 void validate(const IntegrateRequest& request);
+// Gives an absent h its default from the problem's time scale (the problem is validated first: its field is read).
+void resolve_defaults(IntegrateRequest& request);
 IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& on_step = {});
 
 }  // namespace lienewton

@@ -15,30 +15,10 @@ enum class Method { fixed_point, newton_group, newton_algebra };
 inline constexpr bool uses_differential(Method m) { return m != Method::fixed_point; }
 // finite-difference (3.18)/(3.19); dexpinv-0 (3.10)/(3.16); dexpinv-1 (3.11)/(3.17); exact (3.8)/(3.22)
 enum class Differential { finite_difference, dexpinv_0, dexpinv_1, exact };
-// implicit-euler (1.1); dirk-cg2: the 2-stage DIRK Crouch-Grossman method of order 2 (section 6); rkmk-gauss1/2/3
-// and rkmk-radau2/3: implicit Runge-Kutta-Munthe-Kaas methods on the coupled stage system (core/rkmk_tableau.hpp,
-// core/solvers/rkmk_stages.hpp); rkmk4: the explicit classical RKMK method of order 4, the baseline; dirk-cg3: a
-// 3-stage DIRK Crouch-Grossman method of order 3 (core/requests_on_group.hpp).
+// The integrators: each one's tableau, order and form is its row in core/integrators/methods.cpp, its words its row in
+// core/vocabulary.cpp.
 enum class Integrator { implicit_euler, dirk_cg2, rkmk_gauss1, rkmk_gauss2, rkmk_gauss3, rkmk_radau2, rkmk_radau3,
-                        rkmk4, dirk_cg3 };
-// The order p of an integrator's global error O(h^p), which the order tests and the work-precision fits check.
-inline constexpr int order_of(Integrator i) {
-  switch (i) {
-    case Integrator::implicit_euler: return 1;
-    case Integrator::dirk_cg2: return 2;
-    case Integrator::rkmk_gauss1: return 2;
-    case Integrator::rkmk_gauss2: return 4;
-    case Integrator::rkmk_gauss3: return 6;
-    case Integrator::rkmk_radau2: return 3;
-    case Integrator::rkmk_radau3: return 5;
-    case Integrator::rkmk4: return 4;
-    case Integrator::dirk_cg3: return 3;
-  }
-  return 1;
-}
-// Whether an integrator's steps solve implicit stages (all but the explicit rkmk4): the method, the differential
-// and the solver's options matter only then.
-inline constexpr bool solves_stages(Integrator i) { return i != Integrator::rkmk4; }
+                        rkmk4, dirk_cg3, rkmk_lobatto3c };
 // How the Newton system is solved: auto picks lu below kKrylovThreshold (solvers/newton_step.hpp) and gmres above;
 // lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
 enum class LinearSolver { auto_select, lu, gmres };
@@ -96,7 +76,7 @@ inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Int
                                                  Integrator::rkmk_gauss1,    Integrator::rkmk_gauss2,
                                                  Integrator::rkmk_gauss3,    Integrator::rkmk_radau2,
                                                  Integrator::rkmk_radau3,    Integrator::rkmk4,
-                                                 Integrator::dirk_cg3};
+                                                 Integrator::dirk_cg3,       Integrator::rkmk_lobatto3c};
 inline constexpr LinearSolver kAllLinearSolvers[] = {LinearSolver::auto_select, LinearSolver::lu, LinearSolver::gmres};
 inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algebra_residual};
 inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,

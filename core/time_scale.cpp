@@ -27,4 +27,9 @@ std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end)
   return h;
 }
 
+double default_step(const ProblemSpec& problem, double t_end, double max_steps) {
+  const double h = std::min(kDefaultIntegrationStep, default_step_sizes(problem, t_end).front());
+  return std::min(t_end, std::max(h, t_end / max_steps));
+}
+
 }  // namespace lienewton

@@ -22,4 +22,9 @@ inline constexpr double kMaxDefaultRunSteps = 8192;
 inline constexpr double kMaxDefaultStep = 0.25;
 std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end);
 
+// The default step of one integration to t_end: kDefaultIntegrationStep where that is inside the asymptotic regime
+// (h rho <= 1), else the largest default step size, and never more than max_steps steps or a step past t_end.
+inline constexpr double kDefaultIntegrationStep = 0.1;
+double default_step(const ProblemSpec& problem, double t_end, double max_steps);
+
 }  // namespace lienewton

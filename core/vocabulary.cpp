@@ -169,6 +169,12 @@ Words words(Integrator i) {
               "coefficients solving the order-3 conditions of Crouch–Grossman methods (Owren & Marthinsen 1999), "
               "which add Σbᵢ²cᵢ + 2Σᵢ<ⱼ bᵢcᵢbⱼ = 1/3 to the classical ones; each stage y = z·exp(γh g(y)), "
               "γ ≈ 0.436, solved in sequence by the chosen method as dirk-cg2's; third order."};
+    case Integrator::rkmk_lobatto3c:
+      return {"rkmk-lobatto3c", "RKMK Lobatto IIIC 3", "Lobatto3C",
+              "implicit Runge–Kutta–Munthe-Kaas, 3-stage Lobatto IIIC (order 4)",
+              "Three-stage Lobatto IIIC as a Runge–Kutta–Munthe-Kaas method: coupled stages at c = 0, 1/2, 1 in "
+              "the algebra, dexp⁻¹ (3.9) truncated after ad², solved together by Newton; fourth order, L-stable "
+              "and stiffly accurate: damps stiff components as Radau IIA does, at Gauss 2's order."};
   }
   return {};
 }

@@ -31,7 +31,7 @@ IntegrateRequest run_request(const WorkPrecisionRequest& req, const WorkPrecisio
   if (req.tolerances.empty()) {
     r.h = req.h[k];
   } else {
-    r.h = std::min(r.h, req.t_end);
+    r.h = std::min(kDefaultIntegrationStep, req.t_end);  // the first step tried: the controller sizes the rest
     r.rtol = r.atol = req.tolerances[k];
     r.max_steps = req.max_steps;
   }
@@ -189,7 +189,7 @@ WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const Se
     const IntegrateRequest ir = run_request(req, req.choices[c], k);
     const IntegrateResult run = integrate(ir);
     WorkPrecisionPoint& p = res.series[c].points[k];
-    p.h = ir.adaptive() ? (run.steps.empty() ? 0.0 : run.steps.back().t / double(run.steps.size())) : ir.h;
+    p.h = ir.adaptive() ? (run.steps.empty() ? 0.0 : run.steps.back().t / double(run.steps.size())) : *ir.h;
     p.tolerance = ir.rtol;
     p.rejected = run.rejected;
     p.cpu_seconds = min_cpu_seconds(ir, run.cpu_seconds);

@@ -1,5 +1,7 @@
 #include "render/short_names.hpp"
 
+#include "core/integrators/methods.hpp"
+
 namespace lienewton::render {
 
 std::string series_name(Method method, Differential differential) {

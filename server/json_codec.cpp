@@ -503,12 +503,13 @@ void check_t_end(double t_end, const Limits& limits) {
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   IntegrateRequest r = read_request<IntegrateRequest>(body, fields::integrate, limits);
   check_t_end(r.t_end, limits);
+  resolve_defaults(r);
   // Adaptive steps: h is only the first step; the tries are bounded by max_steps, at most the server's step limit.
   if (r.adaptive()) {
     r.max_steps = static_cast<int>(std::min<double>(r.max_steps, limits.max_steps));
     return r;
   }
-  if (r.t_end / r.h > limits.max_steps) {
+  if (r.t_end / *r.h > limits.max_steps) {
     fail("h", "t_end / h must be at most " + std::to_string(static_cast<long long>(limits.max_steps)) + " steps");
   }
   return r;

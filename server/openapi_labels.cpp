@@ -3,6 +3,7 @@
 #include <string>
 #include <utility>
 
+#include "core/integrators/methods.hpp"
 #include "core/invariants.hpp"
 #include "core/problems.hpp"
 #include "core/vocabulary.hpp"
@@ -76,9 +77,12 @@ json basin_root_colors() {
 json openapi_labels(const ServerOptions& options) {
   json methods = entries(kAllMethods);
   for (std::size_t i = 0; i < std::size(kAllMethods); ++i) methods[i]["uses_differential"] = uses_differential(kAllMethods[i]);
-  json integrators = entries(kAllIntegrators);  // rkmk4 is explicit: legends name no method for it
-  for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+  // rkmk4 is explicit: legends name no method for it. The order is what fitted orders are held to.
+  json integrators = entries(kAllIntegrators);
+  for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i) {
     integrators[i]["solves_stages"] = solves_stages(kAllIntegrators[i]);
+    integrators[i]["order"] = order_of(kAllIntegrators[i]);
+  }
   // A problem's group and n when it has one (heavy-top: SOxR, n = 3) and the invariants its integrations report.
   json problems = entries(kAllProblems);
   for (std::size_t i = 0; i < std::size(kAllProblems); ++i) {

@@ -39,7 +39,7 @@ void check_output(const SolveRequest& r, const OutputLimits& limits) {
 
 void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
   // Adaptive: at most max_steps records; frames: at most 2 frames + 1 states besides y(0).
-  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / r.h);
+  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / *r.h);
   const double states = r.adaptive() ? 2.0 * r.frames + 2.0 : r.frames + 1.0;
   const double values = steps * kStepValues + states * state_values(r.problem);
   refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");

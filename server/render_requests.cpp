@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/integrators/methods.hpp"
 #include "core/basins.hpp"
 #include "core/group_registry.hpp"
 #include "core/integrate.hpp"
@@ -333,7 +334,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   const bool solves = solves_stages(r.integrator);  // rkmk4 is explicit: no method, differential or tol
   caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) +
                  (solves ? ", " + std::string(words(r.solver.method).label) : std::string()),
-             field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
+             field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(*r.h) +
                  ", t_end = " + number_text(r.t_end) +
                  (solves ? " \u00b7 " + solver_facts(r.solver, uses_differential(r.solver.method)) : std::string())};
   return draw(frames, start);
@@ -461,7 +462,7 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
                                                   ": " + result.reason);
   const std::string title = "Invariants' drift: " + std::string(words(r.integrator).short_label) + ", " +
                             field_name(r.problem) + " on " + group_name(r.problem) + ", h = " +
-                            render::power_of_two_label(r.h) + ", t_end = " + number_text(r.t_end);
+                            render::power_of_two_label(*r.h) + ", t_end = " + number_text(r.t_end);
   return draw_figure(renderer, format, [&] { return render::invariants_scene(result, title, width, height); });
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/integrators/methods.hpp"
 #include "core/group_registry.hpp"
 #include "core/integrate.hpp"
 #include "core/problems.hpp"

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <string>
 
+#include "core/integrate.hpp"
+#include "core/integrators/methods.hpp"
 #include "core/order_fit.hpp"
 #include "core/sweep.hpp"
 #include "core/time_scale.hpp"
@@ -52,6 +54,28 @@ TEST(ProblemDefaults, StepSizesFollowTheTimeScale) {
   EXPECT_LE(top.front() * rate, 1.0);
   EXPECT_GT(2 * top.front() * rate, 1.0) << "the largest such power of two";
   for (std::size_t k = 1; k < top.size(); ++k) EXPECT_EQ(top[k], top[k - 1] / 2);
+}
+
+// integrate without h: 0.1 where h rho <= 1 allows it (the rigid body), the time scale's largest step where it does
+// not (the heavy top: h rho <= 1 at 150 rad/s), never past t_end, and the run it gives converges.
+TEST(ProblemDefaults, IntegrateStepFollowsTheTimeScale) {
+  IntegrateRequest body{.problem = built_in(ProblemKind::rigid_body)};
+  resolve_defaults(body);
+  EXPECT_EQ(*body.h, kDefaultIntegrationStep);
+  IntegrateRequest top{.problem = built_in(ProblemKind::heavy_top), .t_end = 0.25};
+  resolve_defaults(top);
+  const double rate = field_rate(top.problem);
+  EXPECT_LE(*top.h * rate, 1.0);
+  EXPECT_GT(2 * *top.h * rate, 1.0);
+  const IntegrateResult run = integrate(top);
+  EXPECT_EQ(run.status, Status::converged) << run.reason;
+  EXPECT_EQ(run.steps.size(), static_cast<std::size_t>(std::llround(0.25 / *top.h)));
+  IntegrateRequest short_run{.problem = built_in(ProblemKind::rigid_body), .t_end = 0.05};
+  resolve_defaults(short_run);
+  EXPECT_EQ(*short_run.h, 0.05) << "one step to t_end, not a refusal of h > t_end";
+  IntegrateRequest given{.problem = built_in(ProblemKind::heavy_top), .h = 0.125};
+  resolve_defaults(given);
+  EXPECT_EQ(*given.h, 0.125) << "a given h is the request's";
 }
 
 #if !defined(LIENEWTON_SANITIZED)

@@ -11,8 +11,8 @@
 #include "core/order_fit.hpp"
 #include "core/problems.hpp"
 #include "core/request_error.hpp"
-#include "core/rkmk_tableau.hpp"
-#include "core/solvers/rkmk_stages.hpp"
+#include "core/integrators/methods.hpp"
+#include "core/integrators/rkmk_stages.hpp"
 #include "core/work_precision.hpp"
 #include "matrix_ode_reference.hpp"
 
@@ -71,12 +71,14 @@ INSTANTIATE_TEST_SUITE_P(
                       OrderCase{Integrator::rkmk_gauss3, {1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8}},
                       OrderCase{Integrator::rkmk_radau2, {1.0 / 8, 1.0 / 16, 1.0 / 32, 1.0 / 64}},
                       OrderCase{Integrator::rkmk_radau3, {1.0 / 4, 1.0 / 6, 1.0 / 8, 1.0 / 16}},
+                      OrderCase{Integrator::rkmk_lobatto3c, {1.0 / 4, 1.0 / 8, 1.0 / 16, 1.0 / 32}},
                       OrderCase{Integrator::dirk_cg3, {1.0 / 8, 1.0 / 16, 1.0 / 32, 1.0 / 64}},
                       OrderCase{Integrator::rkmk4, {1.0 / 4, 1.0 / 8, 1.0 / 16, 1.0 / 32}}),
     name_of);
 
 const Integrator kRkmk[] = {Integrator::rkmk_gauss1, Integrator::rkmk_gauss2, Integrator::rkmk_gauss3,
-                            Integrator::rkmk_radau2, Integrator::rkmk_radau3, Integrator::rkmk4};
+                            Integrator::rkmk_radau2, Integrator::rkmk_radau3, Integrator::rkmk_lobatto3c,
+                            Integrator::rkmk4};
 
 // y' = y A, A constant: K_i = A solves every stage system (each bracket [c_i h A, A] vanishes), so every RKMK step is
 // y exp(hA) and the integration is exact; checked against Eigen's matrix exponential, on SO(3) and SO(5), to the
@@ -99,7 +101,7 @@ TEST(Rkmk, ConstantFieldIsIntegratedExactly) {
                                  .reference = false};
       const IntegrateResult r = integrate(req);
       ASSERT_EQ(r.status, Status::converged) << r.reason;
-      const double rounding = 16 * std::numeric_limits<double>::epsilon() * exact.norm() * (req.t_end / req.h);
+      const double rounding = 16 * std::numeric_limits<double>::epsilon() * exact.norm() * (req.t_end / *req.h);
       EXPECT_LT((r.y - exact).norm(), rounding) << to_string(integrator) << " N = " << n;
     }
   }
@@ -113,7 +115,7 @@ TEST(Rkmk, ExactJacobianConvergesQuadratically) {
     const SONGroup group(5);
     const auto field = make_field(group, ProblemKind::paper_linear, RigidBodyParams{});
     const ProblemSpec problem{.kind = ProblemKind::paper_linear, .n = 5};
-    const RkmkStages<SONGroup> sys(group, *field, *rkmk_tableau(integrator), problem.start(), 0.0, 1.0);
+    const RkmkStages<SONGroup> sys(group, *field, integrators::tableau_of(integrator), problem.start(), 0.0, 1.0);
     SolverOptions opt;
     opt.tol = 1e-16;
     const StageSolution s = sys.solve(Eigen::VectorXd::Zero(sys.size()), Method::newton_group, Differential::exact, opt);
@@ -174,6 +176,41 @@ TEST(Rkmk, LargeStageSystemsAreRefused) {
   EXPECT_THROW(validate(wp), RequestError);
   wp.choices.pop_back();
   EXPECT_NO_THROW(validate(wp));
+}
+
+// A solver option the integrator's steps would not use is a 422 naming it, not ignored: implicit RKMK methods solve
+// their stage system by their own Newton, rkmk4 solves nothing, and no stage takes seeded starts. A DIRK method's
+// stages are equations of (1.1): they take every option, and the globalised run still converges.
+TEST(Rkmk, OptionsTheStagesDoNotUseAreRefusedNamingThem) {
+  const auto refused_field = [](IntegrateRequest req) -> std::string {
+    try {
+      validate(req);
+    } catch (const RequestError& e) {
+      return e.field();
+    }
+    return "";
+  };
+  const auto with = [](Integrator integrator, auto set) {
+    IntegrateRequest req{.h = 0.25, .integrator = integrator, .reference = false};
+    set(req.solver);
+    return req;
+  };
+  for (Integrator i : {Integrator::rkmk_gauss2, Integrator::rkmk_lobatto3c, Integrator::rkmk4}) {
+    EXPECT_EQ(refused_field(with(i, [](SolverOptions& o) { o.globalization = Globalization::line_search; })),
+              "globalization") << to_string(i);
+    EXPECT_EQ(refused_field(with(i, [](SolverOptions& o) { o.linear_solver = LinearSolver::gmres; })), "linear_solver");
+    EXPECT_EQ(refused_field(with(i, [](SolverOptions& o) { o.stopping = Stopping::algebra_residual; })), "stopping");
+    EXPECT_EQ(refused_field(with(i, [](SolverOptions& o) { o.linear_solver = LinearSolver::lu; })), "");
+  }
+  for (Integrator i : kAllIntegrators)
+    EXPECT_EQ(refused_field(with(i, [](SolverOptions& o) { o.multistart = 4; })), "multistart") << to_string(i);
+  const IntegrateRequest dirk = with(Integrator::dirk_cg2, [](SolverOptions& o) {
+    o.globalization = Globalization::line_search;
+    o.linear_solver = LinearSolver::gmres;
+  });
+  EXPECT_EQ(refused_field(dirk), "");
+  const IntegrateResult r = integrate(dirk);
+  EXPECT_EQ(r.status, Status::converged) << r.reason;
 }
 
 }  // namespace

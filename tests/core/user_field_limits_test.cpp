@@ -136,13 +136,11 @@ TEST(UserFieldLimits, WorkspaceIsWhatTheProgramReports) {
   });
   ASSERT_GT(measured, 0);
   EXPECT_GT(measured, reported / 2) << "reported " << reported << ", measured " << measured;
-#if defined(LIENEWTON_SANITIZED)
-  // AddressSanitizer's allocator adds redzones and shadow to every block and keeps freed ones in quarantine.
-  constexpr double kAllocatorOverhead = 4;
-#else
-  constexpr double kAllocatorOverhead = 2;
+#if !defined(LIENEWTON_SANITIZED)
+  // Not under AddressSanitizer: its allocator adds redzones and shadow to every block and keeps freed ones in
+  // quarantine, by amounts that vary from run to run (2.6x the estimate on one machine, more on another).
+  EXPECT_LT(measured, reported * 2) << "reported " << reported << ", measured " << measured;
 #endif
-  EXPECT_LT(measured, reported * kAllocatorOverhead) << "reported " << reported << ", measured " << measured;
   // Constants are the program's, not the workspace's: a large constant operand adds nothing per thread.
   const auto with_constant = user_field::compile("c = ones(500); a = y(ones(1,500), ones(1,500)) + c;"
                                                  "g = (y - y')*trace(a)", 3, {});

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/integrators/methods.hpp"
 #include "core/integrate.hpp"
 #include "core/order_fit.hpp"
 #include "core/groups/se3_group.hpp"

@@ -42,6 +42,8 @@ TEST(ServiceGate, AProgramIsCompiledOncePerRequestAndN) {
             3u);
   EXPECT_EQ(compilations_of(s, "/api/v1/basins", "{" + kSine + R"(,"n":3,"h":1,"size":6})"), 1u);
   EXPECT_EQ(compilations_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"h":0.1,"t_end":0.5})"), 1u);
+  // Without h: the default step is read off the field at the start, by the same compiled program.
+  EXPECT_EQ(compilations_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"t_end":0.5})"), 1u);
   EXPECT_EQ(compilations_of(s, "/api/v1/render/heatmap", "{" + kSine + R"(,"n":[3,4],"h":[0.5,1]})"), 2u);
 }
 

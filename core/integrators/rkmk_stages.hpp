@@ -1,10 +1,10 @@
 #pragma once
 // The coupled stage system of an implicit Runge-Kutta-Munthe-Kaas step (Munthe-Kaas, "High order Runge-Kutta
 // methods on manifolds", Appl. Numer. Math. 29 (1999)) for y' = y g(t, y) from y_k at t_k, step h, and an
-// s-stage tableau (a, b, c) (core/rkmk_tableau.hpp):
+// s-stage tableau (a, b, c) (tableau.hpp, methods.cpp):
 //   F_i(K) = K_i - dexpinv~_{Theta_i}(w_i) = 0,   w_i = g(t_k + c_i h, Y_i),  Y_i = y_k exp(Theta_i),
 //   Theta_i = h sum_j a_ij K_j,                   y_k+1 = y_k exp(h sum_j b_j K_j),
-// dexpinv~ the series (3.9) truncated after ad^q (q: the tableau's dexpinv_degree). The unknowns are the s stages
+// dexpinv~ the series (3.9) truncated after ad^q (q: the tableau's dexpinv_degree(), p - 2). The unknowns are the s stages
 // K_i in the algebra's coordinates, stacked: the section 6 remark's "general RK methods", solved as one system in
 // the algebra (the form of Version 2, (3.20)). Its Jacobian is dF_i/dK_j = delta_ij I - h a_ij M_i with
 //   M_i = d/dTheta (dexpinv~_Theta(w_i)) + dexpinv~_{Theta_i} dg_{Y_i} dexp_{Theta_i}           (cf. (3.22)).
@@ -31,13 +31,13 @@
 #include <string>
 #include <vector>
 
-#include "continuation.hpp"
 #include "core/cancellation.hpp"
 #include "core/groups/bernoulli.hpp"
 #include "core/problems.hpp"
-#include "core/rkmk_tableau.hpp"
 #include "core/solver_options.hpp"
-#include "iteration_monitor.hpp"
+#include "core/solvers/continuation.hpp"
+#include "core/solvers/iteration_monitor.hpp"
+#include "tableau.hpp"
 
 namespace lienewton {
 
@@ -63,8 +63,8 @@ class RkmkStages {
     std::vector<Element> y;
   };
 
-  RkmkStages(const G& group, VectorField<G>& field, const RkmkTableau& tab, Element y, double t, double h)
-      : group_(group), field_(&field), tab_(tab), y_(std::move(y)), t_(t), h_(h), q_(group.dim()) {}
+  RkmkStages(const G& group, VectorField<G>& field, const integrators::Tableau& tab, Element y, double t, double h)
+      : group_(group), field_(&field), tab_(&tab), y_(std::move(y)), t_(t), h_(h), q_(group.dim()) {}
 
   // The same system at another step size (continuation in h).
   RkmkStages at_step(double h) const {
@@ -73,17 +73,17 @@ class RkmkStages {
     return s;
   }
 
-  int size() const { return tab_.stages * q_; }
+  int size() const { return tab_->stages() * q_; }
   double h() const { return h_; }
   Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
   Vector theta(const Eigen::VectorXd& k, int i) const {
     Vector th = zero_vector(group_);
-    for (int j = 0; j < tab_.stages; ++j) th += (h_ * tab_.a[i][j]) * stage(k, j);
+    for (int j = 0; j < tab_->stages(); ++j) th += (h_ * tab_->a(i, j)) * stage(k, j);
     return th;
   }
   Eigen::VectorXd thetas(const Eigen::VectorXd& k) const {
     Eigen::VectorXd out(size());
-    for (int i = 0; i < tab_.stages; ++i) out.segment(i * q_, q_) = Eigen::VectorXd(theta(k, i));
+    for (int i = 0; i < tab_->stages(); ++i) out.segment(i * q_, q_) = Eigen::VectorXd(theta(k, i));
     return out;
   }
   // g(t_k, y_k): every stage's value at h = 0.
@@ -96,7 +96,7 @@ class RkmkStages {
   // Stages K_i = g + c_i h slope, stacked.
   Eigen::VectorXd along(const Vector& g, const Vector& slope) const {
     Eigen::VectorXd k(size());
-    for (int i = 0; i < tab_.stages; ++i) k.segment(i * q_, q_) = Eigen::VectorXd(g + (tab_.c(i) * h_) * slope);
+    for (int i = 0; i < tab_->stages(); ++i) k.segment(i * q_, q_) = Eigen::VectorXd(g + (tab_->c(i) * h_) * slope);
     return k;
   }
   // dK/dh at h = 0: differentiating F(K, h) = 0 there gives dK_i/dh = c_i dg_{y_k}(g(t_k, y_k)).
@@ -104,23 +104,23 @@ class RkmkStages {
     field_->set_time(t_);
     const Vector dk = field_->dg(y_, field_->g(y_));
     Eigen::VectorXd slope(size());
-    for (int i = 0; i < tab_.stages; ++i) slope.segment(i * q_, q_) = Eigen::VectorXd(tab_.c(i) * dk);
+    for (int i = 0; i < tab_->stages(); ++i) slope.segment(i * q_, q_) = Eigen::VectorXd(tab_->c(i) * dk);
     return slope;
   }
   // y_k+1 = y_k exp(h sum_j b_j K_j).
   Element next(const Eigen::VectorXd& k) const {
     Vector u = zero_vector(group_);
-    for (int j = 0; j < tab_.stages; ++j) u += (h_ * tab_.b[j]) * stage(k, j);
+    for (int j = 0; j < tab_->stages(); ++j) u += (h_ * tab_->b(j)) * stage(k, j);
     return group_.times_exp(y_, u);
   }
 
   Evaluation evaluate(const Eigen::VectorXd& k) const {
     Evaluation e;
     e.f.resize(size());
-    for (int i = 0; i < tab_.stages; ++i) {
+    for (int i = 0; i < tab_->stages(); ++i) {
       e.theta.push_back(theta(k, i));
       e.y.push_back(group_.times_exp(y_, e.theta[i]));
-      field_->set_time(t_ + tab_.c(i) * h_);
+      field_->set_time(t_ + tab_->c(i) * h_);
       e.w.push_back(field_->g(e.y[i]));
       e.f.segment(i * q_, q_) = Eigen::VectorXd(stage(k, i) - truncated_dexpinv(e.theta[i], e.w[i]));
     }
@@ -130,7 +130,7 @@ class RkmkStages {
   // dexpinv~_theta(w) = sum_{k <= q} beta_k ad_theta^k(w): beta_0 = 1, beta_1 = 1/2, beta_2p = B_2p / (2p)! (3.9).
   Vector truncated_dexpinv(const Vector& theta, const Vector& w) const {
     Vector x = w, sum = w;
-    for (int k = 1; k <= tab_.dexpinv_degree; ++k) {
+    for (int k = 1; k <= tab_->dexpinv_degree(); ++k) {
       x = group_.bracket(theta, x);
       if (const double beta = coefficient(k); beta != 0.0) sum += beta * x;
     }
@@ -153,17 +153,17 @@ class RkmkStages {
     std::vector<Eigen::MatrixXd> stage_m;
     if (d == Differential::dexpinv_0) {
       field_->set_time(t_);
-      stage_m.assign(static_cast<std::size_t>(tab_.stages), Eigen::MatrixXd(field_->dg_matrix(group_, y_)));
+      stage_m.assign(static_cast<std::size_t>(tab_->stages()), Eigen::MatrixXd(field_->dg_matrix(group_, y_)));
     } else {
-      for (int i = 0; i < tab_.stages; ++i) {
-        field_->set_time(t_ + tab_.c(i) * h_);
+      for (int i = 0; i < tab_->stages(); ++i) {
+        field_->set_time(t_ + tab_->c(i) * h_);
         stage_m.push_back(d == Differential::dexpinv_1 ? first_order_m(e, i) : exact_m(e, i));
       }
     }
     Eigen::MatrixXd m = Eigen::MatrixXd::Identity(size(), size());
-    for (int i = 0; i < tab_.stages; ++i)
-      for (int j = 0; j < tab_.stages; ++j)
-        m.block(i * q_, j * q_, q_, q_) -= (h_ * tab_.a[i][j]) * stage_m[static_cast<std::size_t>(i)];
+    for (int i = 0; i < tab_->stages(); ++i)
+      for (int j = 0; j < tab_->stages(); ++j)
+        m.block(i * q_, j * q_, q_, q_) -= (h_ * tab_->a(i, j)) * stage_m[static_cast<std::size_t>(i)];
     return m;
   }
 
@@ -236,7 +236,7 @@ class RkmkStages {
     const Vector& th = e.theta[static_cast<std::size_t>(i)];
     const Vector& w = e.w[static_cast<std::size_t>(i)];
     const Eigen::MatrixXd ad = Eigen::MatrixXd(group_.ad_matrix(th));
-    const int q = tab_.dexpinv_degree;
+    const int q = tab_->dexpinv_degree();
     std::vector<Eigen::MatrixXd> ad_pow{Eigen::MatrixXd::Identity(q_, q_)};
     std::vector<Vector> ad_w{w};  // ad^j w
     for (int j = 1; j <= q; ++j) {
@@ -279,7 +279,7 @@ class RkmkStages {
 
   G group_;
   VectorField<G>* field_;
-  RkmkTableau tab_;
+  const integrators::Tableau* tab_;
   Element y_;
   double t_, h_;
   int q_;
