@@ -47,15 +47,17 @@ IntegrateResult run(const Race& race, Integrator integrator, long steps) {
   return group_family(race.problem.group).integrate(req, race.problem.start(), {});
 }
 
-// The fewest steps reaching the target, within 2 %: doubling from 8 steps until the target holds, then bisection
-// between the last count that missed it and the first that held.
-long steps_for(const Race& race, Integrator integrator, const Eigen::MatrixXd& y_ref, double& error) {
-  const auto error_at = [&](long steps) { return (run(race, integrator, steps).y - y_ref).norm(); };
-  long missed = 0, held = 8;
-  while (!((error = error_at(held)) <= race.target) && held < 4'000'000) missed = held, held *= 2;
-  while (held - missed > std::max(1L, held / 50)) {
-    const long mid = (missed + held) / 2;
-    if (const double e = error_at(mid); e <= race.target) {
+// The first value reaching the target: from start, farther (next) until the target holds or may_go_on says stop,
+// then bisection (middle) between the last value that missed and the first that held while they are apart.
+// missed starts at T{} = 0, which apart reads as "no value missed yet" where it must.
+template <class T, class ErrorAt, class Next, class MayGoOn, class Apart, class Middle>
+T first_reaching(double target, T start, const ErrorAt& error_at, const Next& next, const MayGoOn& may_go_on,
+                 const Apart& apart, const Middle& middle, double& error) {
+  T missed{}, held = start;
+  while (!((error = error_at(held)) <= target) && may_go_on(held)) missed = held, held = next(held);
+  while (apart(missed, held)) {
+    const T mid = middle(missed, held);
+    if (const double e = error_at(mid); e <= target) {
       held = mid;
       error = e;
     } else {
@@ -63,6 +65,16 @@ long steps_for(const Race& race, Integrator integrator, const Eigen::MatrixXd& y
     }
   }
   return held;
+}
+
+// The fewest steps reaching the target, within 2 %: doubling from 8 steps until the target holds, then bisection
+// between the last count that missed it and the first that held.
+long steps_for(const Race& race, Integrator integrator, const Eigen::MatrixXd& y_ref, double& error) {
+  return first_reaching(
+      race.target, 8L, [&](long steps) { return (run(race, integrator, steps).y - y_ref).norm(); },
+      [](long held) { return held * 2; }, [](long held) { return held < 4'000'000; },
+      [](long missed, long held) { return held - missed > std::max(1L, held / 50); },
+      [](long missed, long held) { return (missed + held) / 2; }, error);
 }
 
 void Integrators_Race(benchmark::State& state, const Race& race) {
@@ -108,18 +120,11 @@ double tolerance_for(const Race& race, Integrator integrator, const Eigen::Matri
     const IntegrateResult r = run_adaptive(race, integrator, tol);
     return r.status == Status::converged ? (r.y - y_ref).norm() : HUGE_VAL;
   };
-  double missed = 0, held = race.target;
-  while (!((error = error_at(held)) <= race.target) && held > 1e-14) missed = held, held /= 4;
-  while (missed > 0 && missed / held > 1.05) {
-    const double mid = std::sqrt(missed * held);
-    if (const double e = error_at(mid); e <= race.target) {
-      held = mid;
-      error = e;
-    } else {
-      missed = mid;
-    }
-  }
-  return held;
+  return first_reaching(
+      race.target, race.target, error_at, [](double held) { return held / 4; },
+      [](double held) { return held > 1e-14; },
+      [](double missed, double held) { return missed > 0 && missed / held > 1.05; },
+      [](double missed, double held) { return std::sqrt(missed * held); }, error);
 }
 
 std::string text(double x) {

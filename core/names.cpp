@@ -17,19 +17,9 @@ std::string_view to_string(Search v) { return words(v).api; }
 std::string_view to_string(PathPointKind v) { return words(v).api; }
 std::string_view to_string(Invariant v) { return words(v).api; }
 std::optional<Status> status_from_string(std::string_view s) { return from_api_name(kAllStatuses, s); }
-std::optional<ProblemKind> problem_from_string(std::string_view s) { return from_api_name(kAllProblems, s); }
 std::optional<Method> method_from_string(std::string_view s) { return from_api_name(kAllMethods, s); }
 std::optional<Differential> differential_from_string(std::string_view s) {
   return from_api_name(kAllDifferentials, s);
 }
-std::optional<Integrator> integrator_from_string(std::string_view s) { return from_api_name(kAllIntegrators, s); }
-std::optional<LinearSolver> linear_solver_from_string(std::string_view s) {
-  return from_api_name(kAllLinearSolvers, s);
-}
-std::optional<Stopping> stopping_from_string(std::string_view s) { return from_api_name(kAllStoppings, s); }
-std::optional<Globalization> globalization_from_string(std::string_view s) {
-  return from_api_name(kAllGlobalizations, s);
-}
-std::optional<Predictor> predictor_from_string(std::string_view s) { return from_api_name(kAllPredictors, s); }
 
 }  // namespace lienewton

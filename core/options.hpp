@@ -57,14 +57,8 @@ std::string_view to_string(Branch);
 std::string_view to_string(Search);
 std::string_view to_string(PathPointKind);
 std::string_view to_string(Invariant);
-std::optional<ProblemKind> problem_from_string(std::string_view);
 std::optional<Method> method_from_string(std::string_view);
 std::optional<Differential> differential_from_string(std::string_view);
-std::optional<Integrator> integrator_from_string(std::string_view);
-std::optional<LinearSolver> linear_solver_from_string(std::string_view);
-std::optional<Stopping> stopping_from_string(std::string_view);
-std::optional<Globalization> globalization_from_string(std::string_view);
-std::optional<Predictor> predictor_from_string(std::string_view);
 
 inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
                                                ProblemKind::rigid_body, ProblemKind::heavy_top};

@@ -132,15 +132,33 @@ void ApiHandlers::throw_stopped(const CancellationToken& token, const std::strin
   }
 }
 
-ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
-  SolveRequest request = solve_request_from_json(body, options_.limits);
+// A request parsed from its body and validated, with the output caps its type has (an integration's output is
+// fitted to them first; a work-precision diagram has none of its own).
+template <class Request>
+Request ApiHandlers::validated(const json& body, Request (*parse)(const json&, const Limits&)) const {
+  Request request = parse(body, options_.limits);
   validate(request);
-  check_output(request, options_.output);
-  return [this, request](const Emit& emit, const CancellationToken& token) {
+  if constexpr (requires { fit_output(request, options_.output); }) fit_output(request, options_.output);
+  if constexpr (requires { check_output(request, options_.output); }) check_output(request, options_.output);
+  return request;
+}
+
+// Streams one record (made only when there is a stream) and says whether the work goes on: not when the client
+// has gone or the token is cancelled, which `stopped` remembers.
+template <class MakeRecord>
+bool ApiHandlers::pass_on(const Emit& emit, const CancellationToken& token, bool& stopped, const char* type,
+                          const MakeRecord& record) {
+  if (emit && !emit(type, record())) return !(stopped = true);
+  return !(stopped = token.cancelled());
+}
+
+ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
+  return [this, request = validated(body, solve_request_from_json)](const Emit& emit, const CancellationToken& token) {
+    bool stopped = false;
     SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
       progress(t.iteration);
-      if (emit && !emit(t.path_point ? "path_point" : "iteration", to_json(t, request.solver.include_iterates))) return false;
-      return !token.cancelled();
+      return pass_on(emit, token, stopped, t.path_point ? "path_point" : "iteration",
+                     [&] { return to_json(t, request.solver.include_iterates); });
     });
     metrics_.solve_finished(std::string(to_string(result.status)), result.iterations);
     if (result.status == Status::cancelled) throw_stopped(token);
@@ -149,10 +167,7 @@ ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
 }
 
 ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
-  SweepRequest request = sweep_request_from_json(body, options_.limits);
-  validate(request);
-  check_output(request, options_.output);
-  return [this, request](const Emit& emit, const CancellationToken& token) {
+  return [this, request = validated(body, sweep_request_from_json)](const Emit& emit, const CancellationToken& token) {
     int index = 0;  // cells finished (each one reaches this callback once)
     bool stopped = false;
     // Say how far it got: the cells finished (and streamed) and those never computed.
@@ -168,8 +183,7 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
       result = lienewton::sweep(request, [&](const SweepCell& cell) {
         progress(index++);
         metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
-        if (emit && !emit("cell", to_json(cell))) return !(stopped = true);
-        return !(stopped = token.cancelled());
+        return pass_on(emit, token, stopped, "cell", [&] { return to_json(cell); });
       });
     } catch (const Cancelled&) {  // inside a cell's finite-difference columns
       throw_with_count();
@@ -182,10 +196,7 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
 // Streams announce the grid (axis, directions, z), then one record per row in row order, then the summary; the
 // plain answer is the whole map.
 ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
-  BasinRequest request = basin_request_from_json(body, options_.limits);
-  validate(request);
-  check_output(request, options_.output);
-  return [this, request](const Emit& emit, const CancellationToken& token) {
+  return [this, request = validated(body, basin_request_from_json)](const Emit& emit, const CancellationToken& token) {
     bool stopped = emit && !emit("grid", to_json(basin_grid(request)));
     int rows = 0;
     const auto throw_with_count = [&] {
@@ -198,8 +209,7 @@ ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
         progress(rows++);
         for (const auto& pixels : row.pixels)
           for (const BasinPixel& p : pixels) metrics_.solve_finished(std::string(to_string(p.status)), p.iterations);
-        if (emit && !emit("row", to_json(row, roots, request.methods))) return !(stopped = true);
-        return !(stopped = token.cancelled());
+        return pass_on(emit, token, stopped, "row", [&] { return to_json(row, roots, request.methods); });
       });
     }
     if (stopped || !result.complete || token.reason() != CancelReason::none) throw_with_count();
@@ -208,16 +218,12 @@ ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
 }
 
 ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
-  IntegrateRequest request = integrate_request_from_json(body, options_.limits);
-  validate(request);
-  fit_output(request, options_.output);
-  check_output(request, options_.output);
-  return [this, request](const Emit& emit, const CancellationToken& token) {
+  return [this, request = validated(body, integrate_request_from_json)](const Emit& emit,
+                                                                        const CancellationToken& token) {
     bool stopped = false;
     IntegrateResult result = lienewton::integrate(request, [&](const StepRecord& step) {
       progress(step.step);
-      if (emit && !emit("step", to_json(step))) return !(stopped = true);
-      return !(stopped = token.cancelled());
+      return pass_on(emit, token, stopped, "step", [&] { return to_json(step); });
     });
     if (stopped || result.status == Status::cancelled) {
       if (token.reason() != CancelReason::none) throw_stopped(token);
@@ -227,15 +233,13 @@ ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
 }
 
 ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
-  WorkPrecisionRequest request = work_precision_request_from_json(body, options_.limits);
-  validate(request);
-  return [this, request](const Emit& emit, const CancellationToken& token) {
+  return [this, request = validated(body, work_precision_request_from_json)](const Emit& emit,
+                                                                             const CancellationToken& token) {
     int index = 0;
     bool stopped = false;
     WorkPrecisionResult result = lienewton::work_precision(request, [&](const WorkPrecisionSeries& series) {
       progress(index++);
-      if (emit && !emit("series", to_json(series))) return !(stopped = true);
-      return !(stopped = token.cancelled());
+      return pass_on(emit, token, stopped, "series", [&] { return to_json(series); });
     });
     if (stopped || token.reason() != CancelReason::none) throw_stopped(token);
     return to_json(result);

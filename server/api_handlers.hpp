@@ -66,6 +66,11 @@ class ApiHandlers {
 
   // Each validates a parsed request and returns its job: called under the slot and the token.
   using MakeJob = Job (ApiHandlers::*)(const json& body);
+  template <class Request>
+  Request validated(const json& body, Request (*parse)(const json&, const Limits&)) const;
+  template <class MakeRecord>
+  static bool pass_on(const Emit& emit, const CancellationToken& token, bool& stopped, const char* type,
+                      const MakeRecord& record);
   Job solve_job(const json& body);
   Job sweep_job(const json& body);
   Job basins_job(const json& body);

@@ -3,8 +3,11 @@
 // rotation and an angular velocity: the heavy top's state) and SE(3) x R^6 (a rigid motion and its twist), and
 // their families, each with its one member at n = 3: requests name them "SOxR" and "SExR". Their matrices are
 // block diagonal, [[R, 0], [0, [[I, w], [0, 1]]]] (7 x 7) and [[T, 0], [0, [[I, v], [0, 1]]]] (11 x 11).
+// SO(3) x SO(3) x R^6, two rigid bodies' rotations and angular velocities (13 x 13), is formed here but has no
+// family yet: registering one compiles every solver on it.
 #include "product_group.hpp"
 #include "se3_group.hpp"
+#include "single_group_family.hpp"
 #include "so3_group.hpp"
 #include "translation_group.hpp"
 
@@ -14,23 +17,10 @@ using SO3xR3Group = ProductGroup<SO3Group, TranslationGroup<3>>;
 using SE3xR6Group = ProductGroup<SE3Group, TranslationGroup<6>>;
 static_assert(LieGroup<SO3xR3Group>);
 static_assert(LieGroup<SE3xR6Group>);
+using SO3xSO3xR6Group = ProductGroup<SO3Group, SO3Group, TranslationGroup<6>>;
+static_assert(LieGroup<SO3xSO3xR6Group>);
 
-struct SOxRFamily {
-  static constexpr const char* kName = "SOxR";
-  static constexpr int kOnlyIndex = 3;
-  template <class F>
-  static decltype(auto) with_group(int, F&& f) {
-    return f(SO3xR3Group{});
-  }
-};
-
-struct SExRFamily {
-  static constexpr const char* kName = "SExR";
-  static constexpr int kOnlyIndex = 3;
-  template <class F>
-  static decltype(auto) with_group(int, F&& f) {
-    return f(SE3xR6Group{});
-  }
-};
+using SOxRFamily = SingleGroupFamily<"SOxR", SO3xR3Group, 3>;
+using SExRFamily = SingleGroupFamily<"SExR", SE3xR6Group, 3>;
 
 }  // namespace lienewton

@@ -1,143 +1,284 @@
 #pragma once
-// The direct product G1 x G2 of two matrix groups (manif's Bundle), as block-diagonal matrices [[y1, 0], [0, y2]]:
-// the product is the matrix product, and everything else comes from the factors block by block: coordinates
-// (v1, v2), hat/vee, bracket and ad (block-diagonal), exp, log (a Spectral per factor), dexp (2.10) and dexpinv
-// (3.9) and their matrices (block-diagonal, so the Newton system is the factors' side by side), defect and
-// projection, tangent, membership. One factor has a global log (R^k, translation_group.hpp): the other's log
-// domain is the product's, with its angle, boundary and words (SO(3) x R^3: rotation angle, pi).
+// The direct product G1 x ... x Gk of matrix groups (manif's Bundle), as block-diagonal matrices
+// [[y1, 0, ...], [0, y2, ...], ...]: the product is the matrix product, and everything else comes from the factors
+// block by block: coordinates (v1, ..., vk), hat/vee, bracket and ad (block-diagonal), exp, log (a Spectral per
+// factor), dexp (2.10) and dexpinv (3.9) and their matrices (block-diagonal, so the Newton system is the factors'
+// side by side), defect and projection, tangent, membership.
+//
+// Each factor keeps its own log domain, so the product's log is defined iff every factor's is. Factors with a
+// global log (R^k, translation_group.hpp) add nothing to it; the bounded ones must share one radius, margin and
+// words (SO(3) and SE(3): rotation angle, pi), so that the product's angle is the largest of theirs and every
+// word a reason says about it is true of the factor that has it. SO(3) x R^3 is thus SO(3)'s domain exactly, and
+// SO(3) x SO(3) x R^6 is inside log's domain while both rotation angles are below pi.
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include "lie_group.hpp"
 
 namespace lienewton {
 
-template <LieGroup G1, LieGroup G2>
+namespace product_detail {
+
+constexpr bool bounded(double log_radius) { return log_radius < std::numeric_limits<double>::infinity(); }
+
+// The factor whose log domain the product's words describe: the first bounded one (the first, if none is).
+template <class... G>
+constexpr std::size_t first_bounded() {
+  constexpr double radii[] = {G::kLogRadius...};
+  for (std::size_t i = 0; i < sizeof...(G); ++i)
+    if (bounded(radii[i])) return i;
+  return 0;
+}
+
+template <std::size_t K>
+constexpr std::array<int, K> offsets(const std::array<int, K>& sizes) {
+  std::array<int, K> at{};
+  for (std::size_t i = 1; i < K; ++i) at[i] = at[i - 1] + sizes[i - 1];
+  return at;
+}
+
+}  // namespace product_detail
+
+template <LieGroup... G>
 struct ProductGroup {
-  static constexpr int kRows1 = G1::Element::RowsAtCompileTime, kRows2 = G2::Element::RowsAtCompileTime;
-  static constexpr int kDim1 = G1::Vector::RowsAtCompileTime, kDim2 = G2::Vector::RowsAtCompileTime;
-  static_assert(kRows1 > 0 && kRows2 > 0 && kDim1 > 0 && kDim2 > 0, "the factors are fixed-size groups");
-  static_assert(G2::kLogRadius == std::numeric_limits<double>::infinity() &&
-                    G1::kLogRadius < std::numeric_limits<double>::infinity(),
-                "the second factor has the global log (R^k), the first the product's log domain");
+  static constexpr std::size_t kFactors = sizeof...(G);
+  static_assert(kFactors >= 2, "a product has at least two factors");
+  static_assert(((G::Element::RowsAtCompileTime > 0 && G::Vector::RowsAtCompileTime > 0) && ...),
+                "the factors are fixed-size groups");
+  template <std::size_t I>
+  using Factor = std::tuple_element_t<I, std::tuple<G...>>;
 
-  using Element = Eigen::Matrix<double, kRows1 + kRows2, kRows1 + kRows2>;
-  using Vector = Eigen::Matrix<double, kDim1 + kDim2, 1>;
-  using Operator = Eigen::Matrix<double, kDim1 + kDim2, kDim1 + kDim2>;
-  struct Spectral {
-    typename G1::Spectral first;
-    typename G2::Spectral second;
-  };
-  static constexpr double kLogRadius = G1::kLogRadius;
-  static constexpr double kLogMargin = G1::kLogMargin;
-  static constexpr const char* kAngleName = G1::kAngleName;
-  static constexpr const char* kLogBoundaryName = G1::kLogBoundaryName;
-  static inline const std::string kAlgebraDimension = std::to_string(kDim1 + kDim2);
+  static constexpr std::array<int, kFactors> kRows{G::Element::RowsAtCompileTime...};
+  static constexpr std::array<int, kFactors> kDims{G::Vector::RowsAtCompileTime...};
+  static constexpr std::array<int, kFactors> kRowAt = product_detail::offsets(kRows);
+  static constexpr std::array<int, kFactors> kDimAt = product_detail::offsets(kDims);
+  static constexpr int kSize = (G::Element::RowsAtCompileTime + ...);
+  static constexpr int kDim = (G::Vector::RowsAtCompileTime + ...);
 
-  int n() const { return g1_.n(); }
-  std::string name() const { return g1_.name() + "x" + g2_.name(); }
-  int dim() const { return kDim1 + kDim2; }
+  using Element = Eigen::Matrix<double, kSize, kSize>;
+  using Vector = Eigen::Matrix<double, kDim, 1>;
+  using Operator = Eigen::Matrix<double, kDim, kDim>;
+  using Spectral = std::tuple<typename G::Spectral...>;
+
+  using Measure = Factor<product_detail::first_bounded<G...>()>;
+  static constexpr double kLogRadius = Measure::kLogRadius;
+  static constexpr double kLogMargin = Measure::kLogMargin;
+  static constexpr const char* kAngleName = Measure::kAngleName;
+  static constexpr const char* kLogBoundaryName = Measure::kLogBoundaryName;
+  static_assert(((!product_detail::bounded(G::kLogRadius) ||
+                  (G::kLogRadius == kLogRadius && G::kLogMargin == kLogMargin &&
+                   std::string_view(G::kAngleName) == kAngleName &&
+                   std::string_view(G::kLogBoundaryName) == kLogBoundaryName)) &&
+                 ...),
+                "the bounded factors share one log radius, margin and words: the product's angle is the largest "
+                "of theirs");
+  static inline const std::string kAlgebraDimension = std::to_string(kDim);
+
+  int n() const { return factor<0>().n(); }
+  std::string name() const {
+    std::string out;
+    each([&](auto i) {
+      if (i > 0) out += 'x';
+      out += factor<i>().name();
+    });
+    return out;
+  }
+  int dim() const { return kDim; }
   Element identity() const { return Element::Identity(); }
-  Element compose(const Element& a, const Element& b) const { return join(g1_.compose(first(a), first(b)),
-                                                                          g2_.compose(second(a), second(b))); }
-  Element inverse(const Element& a) const { return join(g1_.inverse(first(a)), g2_.inverse(second(a))); }
-  Element hat(const Vector& v) const { return join(g1_.hat(head(v)), g2_.hat(tail(v))); }
-  Vector vee(const Element& m) const { return stack(g1_.vee(first(m)), g2_.vee(second(m))); }
+  Element compose(const Element& a, const Element& b) const {
+    return join([&](auto i) { return factor<i>().compose(block<i>(a), block<i>(b)); });
+  }
+  Element inverse(const Element& a) const { return join([&](auto i) { return factor<i>().inverse(block<i>(a)); }); }
+  Element hat(const Vector& v) const { return join([&](auto i) { return factor<i>().hat(part<i>(v)); }); }
+  Vector vee(const Element& m) const { return stack([&](auto i) { return factor<i>().vee(block<i>(m)); }); }
   Vector bracket(const Vector& a, const Vector& b) const {
-    return stack(g1_.bracket(head(a), head(b)), g2_.bracket(tail(a), tail(b)));
+    return stack([&](auto i) { return factor<i>().bracket(part<i>(a), part<i>(b)); });
   }
-  Operator ad_matrix(const Vector& v) const { return diagonal(g1_.ad_matrix(head(v)), g2_.ad_matrix(tail(v))); }
+  Operator ad_matrix(const Vector& v) const {
+    return diagonal([&](auto i) { return factor<i>().ad_matrix(part<i>(v)); });
+  }
 
-  Element exp(const Vector& v) const { return join(g1_.exp(head(v)), g2_.exp(tail(v))); }
+  Element exp(const Vector& v) const { return join([&](auto i) { return factor<i>().exp(part<i>(v)); }); }
   Element times_exp(const Element& y, const Vector& v) const {
-    return join(g1_.times_exp(first(y), head(v)), g2_.times_exp(second(y), tail(v)));
+    return join([&](auto i) { return factor<i>().times_exp(block<i>(y), part<i>(v)); });
   }
-  Spectral spectral(const Vector& v) const { return {g1_.spectral(head(v)), g2_.spectral(tail(v))}; }
-  Spectral log(const Element& y) const { return {g1_.log(first(y)), g2_.log(second(y))}; }
+  Spectral spectral(const Vector& v) const {
+    return spectrals([&](auto i) { return factor<i>().spectral(part<i>(v)); });
+  }
+  Spectral log(const Element& y) const { return spectrals([&](auto i) { return factor<i>().log(block<i>(y)); }); }
   Vector log_vector(const Element& y, double& angle) const {
-    double ignored = 0.0;
-    return stack(g1_.log_vector(first(y), angle), g2_.log_vector(second(y), ignored));
+    std::array<double, kFactors> angles{};
+    const Vector v = stack([&](auto i) { return factor<i>().log_vector(block<i>(y), angles[i]); });
+    angle = largest(angles);
+    return v;
   }
-  Vector vector(const Spectral& s) const { return stack(g1_.vector(s.first), g2_.vector(s.second)); }
-  double angle(const Spectral& s) const { return g1_.angle(s.first); }
+  Vector vector(const Spectral& s) const { return stack([&](auto i) { return factor<i>().vector(std::get<i>(s)); }); }
+  // The largest of the bounded factors' angles (0 when none is bounded).
+  double angle(const Spectral& s) const {
+    std::array<double, kFactors> angles{};
+    each([&](auto i) { angles[i] = factor<i>().angle(std::get<i>(s)); });
+    return largest(angles);
+  }
   Vector dexp(const Spectral& s, const Vector& u) const {
-    return stack(g1_.dexp(s.first, head(u)), g2_.dexp(s.second, tail(u)));
+    return stack([&](auto i) { return factor<i>().dexp(std::get<i>(s), part<i>(u)); });
   }
   Vector dexpinv(const Spectral& s, const Vector& u) const {
-    return stack(g1_.dexpinv(s.first, head(u)), g2_.dexpinv(s.second, tail(u)));
+    return stack([&](auto i) { return factor<i>().dexpinv(std::get<i>(s), part<i>(u)); });
   }
   Operator dexp_matrix(const Spectral& s) const {
-    return diagonal(g1_.dexp_matrix(s.first), g2_.dexp_matrix(s.second));
+    return diagonal([&](auto i) { return factor<i>().dexp_matrix(std::get<i>(s)); });
   }
   Operator dexpinv_matrix(const Spectral& s) const {
-    return diagonal(g1_.dexpinv_matrix(s.first), g2_.dexpinv_matrix(s.second));
+    return diagonal([&](auto i) { return factor<i>().dexpinv_matrix(std::get<i>(s)); });
   }
 
   // The factors' defects and the off-diagonal blocks' size, together.
   double defect(const Element& y) const {
-    const double off = std::hypot(y.template topRightCorner<kRows1, kRows2>().norm(),
-                                  y.template bottomLeftCorner<kRows2, kRows1>().norm());
-    return std::hypot(std::hypot(g1_.defect(first(y)), g2_.defect(second(y))), off);
+    double factors = 0.0, off = 0.0;
+    each([&](auto i) {
+      factors = std::hypot(factors, factor<i>().defect(block<i>(y)));
+      if constexpr (i + 1 < kFactors) off = std::hypot(off, std::hypot(right_of<i>(y).norm(), below<i>(y).norm()));
+    });
+    return std::hypot(factors, off);
   }
-  Element project(const Element& y) const { return join(g1_.project(first(y)), g2_.project(second(y))); }
+  Element project(const Element& y) const { return join([&](auto i) { return factor<i>().project(block<i>(y)); }); }
   // The rotation of the first factor, where it has one (SO(3) x R^3: R; SE(3) x R^6: T's R).
   Eigen::Matrix3d rotation(const Element& y) const
-    requires requires(const G1& g, const typename G1::Element& e) { g.rotation(e); }
+    requires requires(const Factor<0>& g, const typename Factor<0>::Element& e) { g.rotation(e); }
   {
-    return g1_.rotation(first(y));
+    return factor<0>().rotation(block<0>(y));
   }
-  double principal_angle(double theta) const { return g1_.principal_angle(theta); }
+  // As on SO(N), whose angle is also the largest of several: the wrap of the bounded factors' common angle.
+  double principal_angle(double theta) const { return Measure{}.principal_angle(theta); }
   Element tangent(const Element& y, const Element& u) const {
-    return join(g1_.tangent(first(y), first(u)), g2_.tangent(second(y), second(u)));
+    return join([&](auto i) { return factor<i>().tangent(block<i>(y), block<i>(u)); });
   }
 
   Element element(const Eigen::MatrixXd& m) const { return Element(m); }
   Eigen::MatrixXd matrix(const Element& y) const { return Eigen::MatrixXd(y); }
-  Element random(std::uint64_t seed) const { return join(g1_.random(seed), g2_.random(seed)); }
+  // Each factor its own seeded element; a factor repeating an earlier one's group draws from the seed moved on
+  // by its repetition (splitmix64's increment), so that two rigid bodies do not start in one pose.
+  Element random(std::uint64_t seed) const {
+    return join([&](auto i) { return factor<i>().random(seed + repetition<i>() * 0x9E3779B97F4A7C15ull); });
+  }
   // Block diagonal exactly, each block its factor's element (in the factor's words, naming the block).
   std::string not_an_element(const Eigen::MatrixXd& m, const std::string& name) const {
     const Element y(m);
-    if (!y.template topRightCorner<kRows1, kRows2>().isZero(0.0) || !y.template bottomLeftCorner<kRows2, kRows1>().isZero(0.0))
-      return name + " must be block diagonal, [[A, 0], [0, B]] with A in " + g1_.name() + " (" + std::to_string(kRows1) +
-             " x " + std::to_string(kRows1) + ") and B in " + g2_.name() + " (" + std::to_string(kRows2) + " x " +
-             std::to_string(kRows2) + ")";
-    std::string why = g1_.not_an_element(Eigen::MatrixXd(first(y)), name + "'s " + g1_.name() + " block");
-    return why.empty() ? g2_.not_an_element(Eigen::MatrixXd(second(y)), name + "'s " + g2_.name() + " block") : why;
+    bool diagonal_blocks = true;
+    each([&](auto i) {
+      if constexpr (i + 1 < kFactors)
+        diagonal_blocks = diagonal_blocks && right_of<i>(y).isZero(0.0) && below<i>(y).isZero(0.0);
+    });
+    if (!diagonal_blocks) return name + " must be block diagonal, " + block_pattern();
+    std::string why;
+    each([&](auto i) {
+      if (why.empty())
+        why = factor<i>().not_an_element(Eigen::MatrixXd(block<i>(y)), name + "'s " + factor<i>().name() + " block");
+    });
+    return why;
   }
   std::string not_reachable(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const {
     const Element a(y0), b(z);
-    std::string why = g1_.not_reachable(Eigen::MatrixXd(first(a)), Eigen::MatrixXd(first(b)));
-    return why.empty() ? g2_.not_reachable(Eigen::MatrixXd(second(a)), Eigen::MatrixXd(second(b))) : why;
+    std::string why;
+    each([&](auto i) {
+      if (why.empty()) why = factor<i>().not_reachable(Eigen::MatrixXd(block<i>(a)), Eigen::MatrixXd(block<i>(b)));
+    });
+    return why;
   }
 
  private:
-  static typename G1::Element first(const Element& y) { return y.template topLeftCorner<kRows1, kRows1>(); }
-  static typename G2::Element second(const Element& y) { return y.template bottomRightCorner<kRows2, kRows2>(); }
-  static auto head(const Vector& v) { return typename G1::Vector(v.template head<kDim1>()); }
-  static auto tail(const Vector& v) { return typename G2::Vector(v.template tail<kDim2>()); }
-  static Element join(const typename G1::Element& a, const typename G2::Element& b) {
+  template <class F>
+  static void each(F&& f) {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (f(std::integral_constant<std::size_t, I>{}), ...);
+    }(std::index_sequence_for<G...>{});
+  }
+  template <std::size_t I>
+  const Factor<I>& factor() const {
+    return std::get<I>(factors_);
+  }
+  template <std::size_t I>
+  static typename Factor<I>::Element block(const Element& y) {
+    return y.template block<kRows[I], kRows[I]>(kRowAt[I], kRowAt[I]);
+  }
+  template <std::size_t I>
+  static typename Factor<I>::Vector part(const Vector& v) {
+    return v.template segment<kDims[I]>(kDimAt[I]);
+  }
+  // The off-diagonal strips beside and below block I (the rest of its rows and columns).
+  template <std::size_t I>
+  static auto right_of(const Element& y) {
+    return y.template block<kRows[I], kSize - kRowAt[I] - kRows[I]>(kRowAt[I], kRowAt[I] + kRows[I]);
+  }
+  template <std::size_t I>
+  static auto below(const Element& y) {
+    return y.template block<kSize - kRowAt[I] - kRows[I], kRows[I]>(kRowAt[I] + kRows[I], kRowAt[I]);
+  }
+  template <std::size_t I>
+  static constexpr std::uint64_t repetition() {
+    return [&]<std::size_t... J>(std::index_sequence<J...>) {
+      return (std::uint64_t{std::is_same_v<Factor<J>, Factor<I>>} + ... + 0);
+    }(std::make_index_sequence<I>{});
+  }
+  static double largest(const std::array<double, kFactors>& angles) {
+    double out = 0.0;
+    bool first = true;
+    each([&](auto i) {
+      if constexpr (product_detail::bounded(Factor<i>::kLogRadius)) {
+        if (first || std::isnan(angles[i]) || angles[i] > out) out = angles[i];  // a NaN angle stays NaN
+        first = false;
+      }
+    });
+    return out;
+  }
+  // [[A, 0], [0, B]] with A in SO(3) (3 x 3) and B in R^3 (4 x 4).
+  std::string block_pattern() const {
+    std::string rows, which;
+    each([&](auto i) {
+      const std::string letter(1, static_cast<char>('A' + i));
+      std::string row;
+      for (std::size_t j = 0; j < kFactors; ++j) row += (j == 0 ? "" : ", ") + (j == i ? letter : std::string("0"));
+      rows += (i == 0 ? "[" : ", [") + row + "]";
+      which += (i == 0 ? "" : i + 1 == kFactors ? " and " : ", ") + letter + " in " + factor<i>().name() + " (" +
+               std::to_string(kRows[i]) + " x " + std::to_string(kRows[i]) + ")";
+    });
+    return "[" + rows + "] with " + which;
+  }
+  template <class F>
+  static Element join(F&& block_of) {
     Element m = Element::Zero();
-    m.template topLeftCorner<kRows1, kRows1>() = a;
-    m.template bottomRightCorner<kRows2, kRows2>() = b;
+    each([&](auto i) { m.template block<kRows[i], kRows[i]>(kRowAt[i], kRowAt[i]) = block_of(i); });
     return m;
   }
-  static Vector stack(const typename G1::Vector& a, const typename G2::Vector& b) {
+  template <class F>
+  static Vector stack(F&& part_of) {
     Vector v;
-    v << a, b;
+    each([&](auto i) { v.template segment<kDims[i]>(kDimAt[i]) = part_of(i); });
     return v;
   }
-  static Operator diagonal(const typename G1::Operator& a, const typename G2::Operator& b) {
+  template <class F>
+  static Operator diagonal(F&& block_of) {
     Operator m = Operator::Zero();
-    m.template topLeftCorner<kDim1, kDim1>() = a;
-    m.template bottomRightCorner<kDim2, kDim2>() = b;
+    each([&](auto i) { m.template block<kDims[i], kDims[i]>(kDimAt[i], kDimAt[i]) = block_of(i); });
     return m;
   }
+  template <class F>
+  static Spectral spectrals(F&& of) {
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return Spectral{of(std::integral_constant<std::size_t, I>{})...};
+    }(std::index_sequence_for<G...>{});
+  }
 
-  G1 g1_{};
-  G2 g2_{};
+  std::tuple<G...> factors_{};
 };
 
 }  // namespace lienewton

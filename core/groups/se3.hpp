@@ -35,9 +35,6 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat4 = Eigen::Matrix4d;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-inline Eigen::Vector3d rotation_part(const Vec6& xi) { return xi.head<3>(); }
-inline Eigen::Vector3d translation_part(const Vec6& xi) { return xi.tail<3>(); }
-
 inline Mat4 hat(const Vec6& xi) {
   Mat4 m = Mat4::Zero();
   m.topLeftCorner<3, 3>() = so3::hat(xi.head<3>());

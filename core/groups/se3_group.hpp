@@ -15,6 +15,7 @@
 #include "log_domain.hpp"
 #include "polar_factor.hpp"
 #include "se3.hpp"
+#include "single_group_family.hpp"
 
 namespace lienewton {
 
@@ -108,14 +109,7 @@ struct SE3Group {
 };
 static_assert(LieGroup<SE3Group>);
 
-// The family SE: SE(3) alone, at n = 3 (validation refuses any other n before a request reaches with_group).
-struct SEFamily {
-  static constexpr const char* kName = "SE";
-  static constexpr int kOnlyIndex = 3;
-  template <class F>
-  static decltype(auto) with_group(int, F&& f) {
-    return f(SE3Group{});
-  }
-};
+// The family SE: SE(3) alone, at n = 3.
+using SEFamily = SingleGroupFamily<"SE", SE3Group, 3>;
 
 }  // namespace lienewton

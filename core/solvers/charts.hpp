@@ -24,7 +24,7 @@ class GroupChart {
   static constexpr bool kMeritJumps = true;
 
   GroupChart(const Equation<G>& eq, Differential d)
-      : eq_(eq), d_(d),
+      : eq_(eq), d_(d), z_inv_(eq.group().inverse(eq.z())),
         // Difference quotients need f alone, also at y_n: the same log path as in the perturbed points.
         need_(d == Differential::finite_difference ? Equation<G>::Need::residual : Equation<G>::Need::differential) {}
 
@@ -43,11 +43,15 @@ class GroupChart {
   Operator matrix(const Point& p) const { return eq_.df_matrix(p, d_); }
   FactoredOperator<Operator> factored_matrix(const Point& p) const { return eq_.df_factored(p, d_); }
   Vector apply(const Point& p, const Vector& w) const { return eq_.df(p, w, d_); }
-  double size(const Point&) const { return 0.0; }  // the group is compact: no iterate can run away
+  // ||z^-1 y||_F, watched for divergence: constant on a compact group (sqrt(N) on SO(N)), growing with the
+  // translation on SE(3) and R^k, where an iterate can run away.
+  double size(const Point& p) const { return eq_.group().compose(z_inv_, p.y).norm(); }
+  static constexpr const char* kSizeName = "||z^-1 y||_F";
 
  private:
   const Equation<G>& eq_;
   Differential d_;
+  State z_inv_;
   typename Equation<G>::Need need_;
 };
 
@@ -79,6 +83,7 @@ class AlgebraChart {
   FactoredOperator<Operator> factored_matrix(const Point& p) const { return eq_.dftilde_factored(p, d_); }
   Vector apply(const Point& p, const Vector& w) const { return eq_.dftilde(p, w, d_); }
   double size(const Point& p) const { return p.v.norm(); }  // ||v||, watched for divergence
+  static constexpr const char* kSizeName = "||v||";
 
  private:
   const Equation<G>& eq_;

@@ -68,7 +68,6 @@ class Equation {
   const Element& z() const { return z_; }
   double h() const { return h_; }
   bool is_implicit_euler() const { return field_ != nullptr; }
-  bool has_exact_differential() const { return field_ != nullptr || static_cast<bool>(df_); }
   const VectorField<G>* field() const { return field_; }
 
   // Version 1: f(y).

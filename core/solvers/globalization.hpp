@@ -41,7 +41,7 @@ SolveResult globalized_newton(const Chart& chart, typename Chart::State start, c
     step = advance.s.norm();
     info = advance.info;
     p = std::move(*advance.next);
-    if (chart.size(p) > kDivergenceBound) return run.diverged("||v||", chart.size(p));
+    if (chart.size(p) > kDivergenceBound) return run.diverged(Chart::kSizeName, chart.size(p));
     run.next();
   }
 }

@@ -10,6 +10,7 @@
 
 #include "core/integrators/methods.hpp"
 #include "core/heavy_top_params.hpp"
+#include "core/vocabulary.hpp"
 #include "server/json_codec.hpp"
 #include "test_server.hpp"
 #include "tests/core/heavy_top_field.hpp"
@@ -139,7 +140,7 @@ TEST_F(HeavyTopRoutes, DefaultsComeFromTheTop) {
       EXPECT_FALSE(s["fit_reason"].get<std::string>().empty()) << s.dump();
     } else {
       const std::string integrator = s["choice"]["integrator"];
-      const int nominal = order_of(*integrator_from_string(integrator));
+      const int nominal = order_of(*from_api_name(kAllIntegrators, integrator));
       EXPECT_NEAR(s["fitted_order"].get<double>(), nominal, 0.2) << integrator;
     }
   }
