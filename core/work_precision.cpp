@@ -60,7 +60,7 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
 }
 
 // The observed order (order_fit.hpp) over the points in the asymptotic regime: converged, with an error well above
-// the reference's own (kFloorFactor times its tolerance) and well below the solution's size (kScaleFraction of
+// the reference's own (kFloorFactor times its measured accuracy) and well below the solution's size (kScaleFraction of
 // ||y_ref||), and consecutive slopes that agree (asymptotic_range). Each point says whether it is in the fit and,
 // if not, why; an order needs kMinFitPoints of them, else it is null and fit_reason says why.
 constexpr double kFloorFactor = 100;
@@ -76,8 +76,10 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
     return;
   }
   const double size = reference.y ? reference.y->norm() : 0.0;
-  const double floor = std::max({kErrorAtRounding, kFloorFactor * reference.accuracy,
-                                 kFloorFactor * kReferenceTolerance * std::max(1.0, size)});
+  // The reference's accuracy is the distance between its last two refinements, itself ~15x the error of the finer
+  // (RKMK4's Richardson factor): the floor stands ~1500x above the reference's own error, not above the tolerance
+  // its refinement stopped at.
+  const double floor = std::max(kErrorAtRounding, kFloorFactor * reference.accuracy);
   const double ceiling = kScaleFraction * size;
   std::vector<double> h, error;
   std::vector<WorkPrecisionPoint*> usable;
