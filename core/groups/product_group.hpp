@@ -61,8 +61,8 @@ struct ProductGroup {
   static constexpr std::array<int, kFactors> kDims{G::Vector::RowsAtCompileTime...};
   static constexpr std::array<int, kFactors> kRowAt = product_detail::offsets(kRows);
   static constexpr std::array<int, kFactors> kDimAt = product_detail::offsets(kDims);
-  static constexpr int kSize = (G::Element::RowsAtCompileTime + ...);
-  static constexpr int kDim = (G::Vector::RowsAtCompileTime + ...);
+  static constexpr int kSize = (static_cast<int>(G::Element::RowsAtCompileTime) + ...);
+  static constexpr int kDim = (static_cast<int>(G::Vector::RowsAtCompileTime) + ...);
 
   using Element = Eigen::Matrix<double, kSize, kSize>;
   using Vector = Eigen::Matrix<double, kDim, 1>;
