@@ -9,7 +9,7 @@ namespace lienewton {
 Eigen::MatrixXd ProblemSpec::start() const {
   if (z) return *z;
   if (is(ProblemKind::heavy_top)) return HeavyTop{heavy_top}.start();
-  return group_family(group).random(n, seed);
+  return resolved->seeded_start(family(), n, seed);
 }
 
 void validate(const ProblemSpec& problem, int threads) {
@@ -22,7 +22,7 @@ void validate(const ProblemSpec& problem, int threads) {
 }
 
 std::shared_ptr<const user_field::Program> ProblemSpec::program() const {
-  return programs->get(*g, group_family(group).matrix_size(n), parameters);
+  return programs->get(*g, family().matrix_size(n), parameters);
 }
 
 std::string ProblemSpec::name() const { return g ? "g(y)" : std::string(to_string(kind)); }

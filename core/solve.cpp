@@ -15,7 +15,7 @@ void validate(const SolveRequest& req) {
 
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {
   validate(req);
-  return group_family(req.problem.group).solve(req, on_iteration);
+  return req.problem.family().solve(req, on_iteration);
 }
 
 }  // namespace lienewton

@@ -27,7 +27,7 @@ std::vector<int> paper_dimensions() {
 // The paper's N, or the one n the problem (rigid-body, heavy-top) or its group (SE(3), SO(3) x R^3) is written
 // for: there the map sweeps h alone.
 std::vector<int> default_dimensions(const ProblemSpec& problem) {
-  std::optional<int> only = group_family(problem.group).only_index();
+  std::optional<int> only = problem.family().only_index();
   if (!only && !problem.g) only = required_index(problem.kind);
   return only ? std::vector<int>{*only} : paper_dimensions();
 }
@@ -163,7 +163,7 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     s.solver.timed = false;  // a cell keeps no trace: its per-iteration CPU clock reads (3 syscalls)
                              // were 5 % of an exact sweep in perf
     // validate(req) above checked every cell's fields: the cell's solve does not check (nor evaluate g) again.
-    const SolveResult r = group_family(s.problem.group).solve(s, poll);
+    const SolveResult r = s.problem.family().solve(s, poll);
     if (r.status == Status::cancelled) return std::nullopt;
     return SweepCell{s.solver.method, s.problem.n, s.h, r.status, r.reason, r.total_iterations(), r.rate, r.residual, r.seconds};
   };

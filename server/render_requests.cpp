@@ -78,7 +78,7 @@ std::string take_string(json& request, const char* field) {
 // Frames are the body axes of each state's rotation part, as its group extracts it (GroupFamily::rotation): on
 // groups with one (SO(3), SE(3), SO(3) x R^3, SE(3) x R^6), where n is 3.
 void check_rotations(const ProblemSpec& p) {
-  const GroupFamily& family = group_family(p.group);
+  const GroupFamily& family = p.family();
   const std::string why = "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR): ";
   if (p.n != 3) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
   const int size = family.matrix_size(p.n);
@@ -88,7 +88,7 @@ void check_rotations(const ProblemSpec& p) {
 
 // The rotation part of each state (check_rotations has accepted the group).
 std::vector<Eigen::Matrix3d> rotations(const ProblemSpec& p, const std::vector<Eigen::MatrixXd>& states) {
-  const GroupFamily& family = group_family(p.group);
+  const GroupFamily& family = p.family();
   std::vector<Eigen::Matrix3d> out;
   for (const Eigen::MatrixXd& y : states) out.push_back(*family.rotation(p.n, y));
   return out;
@@ -124,7 +124,7 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
   return out;
 }
 
-std::string group_name(const ProblemSpec& p) { return group_family(p.group).title(p.n); }
+std::string group_name(const ProblemSpec& p) { return p.family().title(p.n); }
 
 // The picture's format: png unless the request says svg.
 render::ImageFormat take_format(json& request) {
@@ -166,7 +166,7 @@ std::string solver_facts(const SolverOptions& s, bool newton) {
 
 // The group of a grid over N: "SO(3)" for one N, "SO(N)" for several.
 std::string group_text(const ProblemSpec& p, const std::vector<int>& n) {
-  const std::string first = group_family(p.group).title(n.front());
+  const std::string first = p.family().title(n.front());
   if (std::all_of(n.begin(), n.end(), [&](int v) { return v == n.front(); })) return first;
   const std::size_t paren = first.find('(');
   return paren == std::string::npos ? first : first.substr(0, paren) + "(N)";

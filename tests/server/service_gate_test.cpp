@@ -1,5 +1,6 @@
 // The gate before long work: a request takes its work slot, the per-client limit and its cancellation token
-// before its user's program is compiled or evaluated; the program is compiled once per request and n; and every
+// before its user's program is compiled or evaluated; the program is compiled and the seeded start drawn once per
+// request and n; and every
 // route, plain or streamed, stops soon after its client has gone.
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "core/program_cache.hpp"
+#include "core/spec_cache.hpp"
 #include "server/json_codec.hpp"
 #include "test_server.hpp"
 
@@ -23,15 +25,20 @@ const std::string kSine = R"("g":"u = sin(y)*(2*y - 5*y^2); g = u - u'")";
 
 json error_of(const httplib::Result& r) { return json::parse(r->body)["error"]; }
 
-// POSTs `body` and returns how many programs the server compiled for it.
-std::uint64_t compilations_of(TestServer& s, const std::string& path, const std::string& body) {
-  const std::uint64_t before = ProgramCache::compilations();
+// POSTs `body` and returns how far the process-wide `counter` moved while the server answered it.
+std::uint64_t counted(std::uint64_t (*counter)(), TestServer& s, const std::string& path, const std::string& body) {
+  const std::uint64_t before = counter();
   auto r = s.client().Post(path, body, "application/json");
   EXPECT_TRUE(r);
   if (r) {
     EXPECT_EQ(r->status, 200) << path << ": " << r->body;
   }
-  return ProgramCache::compilations() - before;
+  return counter() - before;
+}
+
+// How many programs the server compiled for a request.
+std::uint64_t compilations_of(TestServer& s, const std::string& path, const std::string& body) {
+  return counted(&ProgramCache::compilations, s, path, body);
 }
 
 TEST(ServiceGate, AProgramIsCompiledOncePerRequestAndN) {
@@ -45,6 +52,26 @@ TEST(ServiceGate, AProgramIsCompiledOncePerRequestAndN) {
   // Without h: the default step is read off the field at the start, by the same compiled program.
   EXPECT_EQ(compilations_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"t_end":0.5})"), 1u);
   EXPECT_EQ(compilations_of(s, "/api/v1/render/heatmap", "{" + kSine + R"(,"n":[3,4],"h":[0.5,1]})"), 2u);
+}
+
+// How many seeded start points the server drew for a request.
+std::uint64_t seeded_starts_of(TestServer& s, const std::string& path, const std::string& body) {
+  return counted(&SpecCache::seeded_starts, s, path, body);
+}
+
+// Validation, the run and the output checks all read the start point: it is drawn from the seed once.
+TEST(ServiceGate, TheSeededStartIsDrawnOncePerRequestAndN) {
+  TestServer s;
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/solve", "{" + kSine + R"(,"n":3,"h":0.5})"), 1u);
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/solve", R"({"n":3,"h":0.5,"include_iterates":true})"), 1u);
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/sweep", "{" + kSine + R"(,"methods":["newton-group","fixed-point"],)"
+                                                               R"("n":[3,4,5],"h":[0.25,0.5,1]})"),
+            3u);
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/basins", "{" + kSine + R"(,"n":3,"h":1,"size":6})"), 1u);
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"h":0.1,"t_end":0.5})"), 1u);
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"t_end":0.5})"), 1u);
+  // A given z is the start: nothing is drawn.
+  EXPECT_EQ(seeded_starts_of(s, "/api/v1/solve", R"({"n":3,"h":0.5,"z":[[1,0,0],[0,1,0],[0,0,1]]})"), 0u);
 }
 
 TEST(ServiceGate, ARepeatedNOrHIsRefusedNamingItsList) {
