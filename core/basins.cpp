@@ -103,6 +103,10 @@ void validate(const BasinRequest& req) {
 
 BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   validate(req);
+  return basins_validated(req, on_row, farm);
+}
+
+BasinResult basins_validated(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   const auto start = std::chrono::steady_clock::now();
   BasinResult result = family_of(req).basins(req, on_row, farm);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

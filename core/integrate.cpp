@@ -76,6 +76,10 @@ IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& o
   IntegrateRequest req = request;
   resolve_defaults(req);
   validate(req);
+  return integrate_validated(req, on_step);
+}
+
+IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallback& on_step) {
   const Eigen::MatrixXd y0 = req.problem.start();
   IntegrateResult res = req.problem.family().integrate(req, y0, on_step);
   if (req.reference && res.status == Status::converged) {

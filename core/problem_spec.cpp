@@ -1,5 +1,7 @@
 #include "problem_spec.hpp"
 
+#include <atomic>
+
 #include "group_registry.hpp"
 #include "problems.hpp"
 #include "validation.hpp"
@@ -12,7 +14,14 @@ Eigen::MatrixXd ProblemSpec::start() const {
   return resolved->seeded_start(family(), n, seed);
 }
 
+namespace {
+std::atomic<std::uint64_t> validations{0};
+}  // namespace
+
+std::uint64_t problem_validations() { return validations.load(); }
+
 void validate(const ProblemSpec& problem, int threads) {
+  validations.fetch_add(1);
   fields::check_bounds(problem);  // n
   validation::check_problem_domain(problem);
   validation::check_rigid_body(problem.rigid_body);

@@ -53,5 +53,7 @@ struct ProblemSpec {
 // program g (its errors name the line and column) and checks that g(z) lies in the group's algebra; throws
 // RequestError. threads: how many threads evaluate g at once (the workspace budget counts each).
 void validate(const ProblemSpec& problem, int threads = 1);
+// ProblemSpecs validated in this process: tests count them per request.
+std::uint64_t problem_validations();
 
 }  // namespace lienewton

@@ -15,6 +15,10 @@ void validate(const SolveRequest& req) {
 
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {
   validate(req);
+  return solve_validated(req, on_iteration);
+}
+
+SolveResult solve_validated(const SolveRequest& req, const TraceCallback& on_iteration) {
   return req.problem.family().solve(req, on_iteration);
 }
 

@@ -304,7 +304,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     r.solver.include_iterates = true;
     before_work(hooks);
     validate(r);
-    SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
+    SolveResult result = solve_validated(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
     std::vector<Eigen::MatrixXd> states;
@@ -327,7 +327,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   before_work(hooks);
   validate(r);
   bool stopped = false;
-  IntegrateResult result = integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+  IntegrateResult result =
+      integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
   frames = rotations(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
   start = frames.front();
@@ -383,7 +384,7 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
   validate(r);
   int index = 0;
   bool stopped = false;
-  const SweepResult result = sweep(r, [&](const SweepCell& cell) {
+  const SweepResult result = sweep_validated(r, [&](const SweepCell& cell) {
     if (hooks.on_cell) hooks.on_cell(cell);
     return !(stopped = !keep_going(hooks, index++));
   });
@@ -404,7 +405,7 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
   validate(r);
   int index = 0;
   bool stopped = false;
-  const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
+  const BasinResult map = basins_validated(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
     if (hooks.on_cell) {  // every pixel is a solve, counted in the metrics as a sweep cell is
       SweepCell counted;
       for (const auto& pixels : row.pixels)
@@ -431,7 +432,7 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   validate(r);
   int index = 0;
   bool stopped = false;
-  const WorkPrecisionResult result = work_precision(r, [&](const WorkPrecisionSeries&) {
+  const WorkPrecisionResult result = work_precision_validated(r, [&](const WorkPrecisionSeries&) {
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped) throw RenderCancelled{};
@@ -455,7 +456,7 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
                                                     "heavy-top do)");
   bool stopped = false;
   const IntegrateResult result =
-      integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+      integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
   if (result.status != Status::converged)
     throw ApiError(422, "unprocessable", "h", "the integration ended " + std::string(to_string(result.status)) +
