@@ -37,7 +37,7 @@ void check_direction(const std::optional<Eigen::VectorXd>& b, const std::string&
 // The request-model accessors: the one place that knows how a SolveRequest spells its problem and options.
 int dimension_of(const BasinRequest& req) { return req.solve.problem.n; }
 Eigen::MatrixXd z_of(const BasinRequest& req) { return req.solve.problem.start(); }
-const GroupFamily& family_of(const BasinRequest& req) { return group_family(req.solve.problem.group); }
+const GroupFamily& family_of(const BasinRequest& req) { return req.solve.problem.family(); }
 double radius_of(const BasinRequest& req) { return req.radius.value_or(family_of(req).log_radius()); }
 
 }  // namespace
@@ -103,6 +103,10 @@ void validate(const BasinRequest& req) {
 
 BasinResult basins(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   validate(req);
+  return basins_validated(req, on_row, farm);
+}
+
+BasinResult basins_validated(const BasinRequest& req, const BasinRowCallback& on_row, const WorkFarm* farm) {
   const auto start = std::chrono::steady_clock::now();
   BasinResult result = family_of(req).basins(req, on_row, farm);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

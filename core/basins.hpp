@@ -107,6 +107,9 @@ using BasinRowCallback = std::function<bool(const BasinRow& row, const std::vect
 // rows finished so far (complete = false). farm (optional): the rows are computed by its processes instead of
 // request.threads threads here; a process that only computed rows for it gets an empty result.
 BasinResult basins(const BasinRequest& request, const BasinRowCallback& on_row = {}, const WorkFarm* farm = nullptr);
+// basins() of a request the caller has already validated: it is not checked again.
+BasinResult basins_validated(const BasinRequest& request, const BasinRowCallback& on_row = {},
+                             const WorkFarm* farm = nullptr);
 
 // The rows part `shard` of a size x size map computes: r with r % count == index (all rows without a shard), so
 // the parts' rows interleave and cost about the same.

@@ -306,7 +306,7 @@ std::vector<Field> build() {
   t.push_back(Field{.name = "r", .type = Type::number, .routes = basins, .lands = {&BasinRequest::radius},
                     .description = "(a, b) in [-r, r]^2; default: the group's log radius (its default here is SO's)",
                     .minimum = 0.0, .maximum = 100.0, .exclusive_minimum = true,
-                    .default_value = group_family(ProblemSpec{}.group).log_radius()});
+                    .default_value = ProblemSpec{}.family().log_radius()});
   t.push_back(coordinates);
   t.push_back(b2);
   return t;

@@ -1,7 +1,8 @@
 #pragma once
 // The groups a request may name: "group": "SO" picks the family SO and n its member SO(n). Each family is
 // registered once, by register_group<Family>() (register_group.hpp), which compiles the request code for its
-// groups; the requests reach a group only through the family found here by name.
+// groups; the requests reach a group only through the family found here by name (a ProblemSpec resolves its
+// group once: ProblemSpec::family()).
 #include <Eigen/Dense>
 #include <cstdint>
 #include <memory>

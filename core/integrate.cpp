@@ -76,8 +76,12 @@ IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& o
   IntegrateRequest req = request;
   resolve_defaults(req);
   validate(req);
+  return integrate_validated(req, on_step);
+}
+
+IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallback& on_step) {
   const Eigen::MatrixXd y0 = req.problem.start();
-  IntegrateResult res = group_family(req.problem.group).integrate(req, y0, on_step);
+  IntegrateResult res = req.problem.family().integrate(req, y0, on_step);
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
     const ReferenceSolution ref = reference_solution(req.problem, y0, req.t_end);

@@ -78,5 +78,7 @@ void validate(const IntegrateRequest& request);
 // Gives an absent h its default from the problem's time scale (the problem is validated first: its field is read).
 void resolve_defaults(IntegrateRequest& request);
 IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& on_step = {});
+// integrate() of a request the caller has resolved (resolve_defaults) and validated: it is not checked again.
+IntegrateResult integrate_validated(const IntegrateRequest& request, const StepCallback& on_step = {});
 
 }  // namespace lienewton

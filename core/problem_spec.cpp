@@ -1,5 +1,7 @@
 #include "problem_spec.hpp"
 
+#include <atomic>
+
 #include "group_registry.hpp"
 #include "problems.hpp"
 #include "validation.hpp"
@@ -9,10 +11,17 @@ namespace lienewton {
 Eigen::MatrixXd ProblemSpec::start() const {
   if (z) return *z;
   if (is(ProblemKind::heavy_top)) return HeavyTop{heavy_top}.start();
-  return group_family(group).random(n, seed);
+  return resolved->seeded_start(family(), n, seed);
 }
 
+namespace {
+std::atomic<std::uint64_t> validations{0};
+}  // namespace
+
+std::uint64_t problem_validations() { return validations.load(); }
+
 void validate(const ProblemSpec& problem, int threads) {
+  validations.fetch_add(1);
   fields::check_bounds(problem);  // n
   validation::check_problem_domain(problem);
   validation::check_rigid_body(problem.rigid_body);
@@ -22,7 +31,7 @@ void validate(const ProblemSpec& problem, int threads) {
 }
 
 std::shared_ptr<const user_field::Program> ProblemSpec::program() const {
-  return programs->get(*g, group_family(group).matrix_size(n), parameters);
+  return programs->get(*g, family().matrix_size(n), parameters);
 }
 
 std::string ProblemSpec::name() const { return g ? "g(y)" : std::string(to_string(kind)); }

@@ -10,6 +10,7 @@
 #include "options.hpp"
 #include "program_cache.hpp"
 #include "rigid_body_params.hpp"
+#include "spec_cache.hpp"
 #include "user_field/program.hpp"
 
 namespace lienewton {
@@ -30,6 +31,8 @@ struct ProblemSpec {
   user_field::Parameters parameters{};
   // g compiled per matrix size, shared with this spec's copies: compiled once per request and n.
   std::shared_ptr<ProgramCache> programs = std::make_shared<ProgramCache>();
+  // The family group names and the seeded start, resolved once and shared with this spec's copies.
+  std::shared_ptr<SpecCache> resolved = std::make_shared<SpecCache>();
 
   // Whether the request's field is the built-in problem `k` (not a user's program).
   bool is(ProblemKind k) const { return !g && kind == k; }
@@ -39,6 +42,9 @@ struct ProblemSpec {
   // g compiled for n (from `programs`); throws RequestError naming g. Only for a spec with g.
   std::shared_ptr<const user_field::Program> program() const;
 
+  // The family `group` names (from `resolved`); throws RequestError naming group when none is registered.
+  const GroupFamily& family() const { return resolved->family(group); }
+
   // z, or heavy-top's start, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;
 };
@@ -47,5 +53,7 @@ struct ProblemSpec {
 // program g (its errors name the line and column) and checks that g(z) lies in the group's algebra; throws
 // RequestError. threads: how many threads evaluate g at once (the workspace budget counts each).
 void validate(const ProblemSpec& problem, int threads = 1);
+// ProblemSpecs validated in this process: tests count them per request.
+std::uint64_t problem_validations();
 
 }  // namespace lienewton

@@ -5,7 +5,7 @@
 namespace lienewton {
 
 ReferenceSolution reference_solution(const ProblemSpec& problem, const Eigen::MatrixXd& y0, double t_end) {
-  return group_family(problem.group).reference_solution(problem, y0, t_end);
+  return problem.family().reference_solution(problem, y0, t_end);
 }
 
 }  // namespace lienewton

@@ -1,7 +1,7 @@
 #pragma once
 // Every request on one group G: what register_group<Family>() (register_group.hpp) compiles for each group of a
-// family. The requests' own files (solve.cpp, basins.cpp, integrate.cpp, reference_solution.cpp) validate and
-// reach these through the group registry (group_registry.hpp).
+// family. The requests' own files (solve.cpp, basins.cpp, integrate.cpp, reference_solution.cpp) validate (or are
+// handed a validated request) and reach these through the problem's family (ProblemSpec::family()).
 // integrate_on() and reference_on() are the integrators' (integrators/).
 #include <Eigen/Dense>
 #include <algorithm>

@@ -15,7 +15,11 @@ void validate(const SolveRequest& req) {
 
 SolveResult solve(const SolveRequest& req, const TraceCallback& on_iteration) {
   validate(req);
-  return group_family(req.problem.group).solve(req, on_iteration);
+  return solve_validated(req, on_iteration);
+}
+
+SolveResult solve_validated(const SolveRequest& req, const TraceCallback& on_iteration) {
+  return req.problem.family().solve(req, on_iteration);
 }
 
 }  // namespace lienewton

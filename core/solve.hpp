@@ -16,6 +16,9 @@ struct SolveRequest {
 
 // Validates the request (throws RequestError naming the field) and solves it.
 SolveResult solve(const SolveRequest& request, const TraceCallback& on_iteration = {});
+// Solves a request the caller has already validated (the server, before its answer's status line): it is not
+// checked again, nor is a user's g evaluated again for it.
+SolveResult solve_validated(const SolveRequest& request, const TraceCallback& on_iteration = {});
 
 // Checks every field of the request; throws RequestError. Called by solve(); exposed for front ends.
 void validate(const SolveRequest& request);

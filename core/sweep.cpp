@@ -27,7 +27,7 @@ std::vector<int> paper_dimensions() {
 // The paper's N, or the one n the problem (rigid-body, heavy-top) or its group (SE(3), SO(3) x R^3) is written
 // for: there the map sweeps h alone.
 std::vector<int> default_dimensions(const ProblemSpec& problem) {
-  std::optional<int> only = group_family(problem.group).only_index();
+  std::optional<int> only = problem.family().only_index();
   if (!only && !problem.g) only = required_index(problem.kind);
   return only ? std::vector<int>{*only} : paper_dimensions();
 }
@@ -102,7 +102,8 @@ SweepRequest with_defaults(SweepRequest req) {
   return req;
 }
 
-void validate(const SweepRequest& req) {
+void validate(const SweepRequest& request) {
+  const SweepRequest req = with_defaults(request);
   // The checks of the lists first: each n's problem costs a compilation of g and an evaluation.
   if (req.methods.empty()) validation::invalid("methods", "methods must name at least one method");
   for (double h : req.h) validation::check(fields::h, h, "h");
@@ -133,8 +134,13 @@ std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard) {
 
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
                   const std::function<bool()>& should_continue, const WorkFarm* farm) {
+  validate(request);
+  return sweep_validated(request, on_cell, should_continue, farm);
+}
+
+SweepResult sweep_validated(const SweepRequest& request, const CellCallback& on_cell,
+                            const std::function<bool()>& should_continue, const WorkFarm* farm) {
   const SweepRequest req = with_defaults(request);
-  validate(req);
   const auto start = std::chrono::steady_clock::now();
   std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
   for (int n : req.n) {
@@ -162,8 +168,8 @@ SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell,
     s.solver.include_iterates = false;
     s.solver.timed = false;  // a cell keeps no trace: its per-iteration CPU clock reads (3 syscalls)
                              // were 5 % of an exact sweep in perf
-    // validate(req) above checked every cell's fields: the cell's solve does not check (nor evaluate g) again.
-    const SolveResult r = group_family(s.problem.group).solve(s, poll);
+    // validate(req) checked every cell's fields: the cell's solve does not check (nor evaluate g) again.
+    const SolveResult r = s.problem.family().solve(s, poll);
     if (r.status == Status::cancelled) return std::nullopt;
     return SweepCell{s.solver.method, s.problem.n, s.h, r.status, r.reason, r.total_iterations(), r.rate, r.residual, r.seconds};
   };

@@ -51,6 +51,7 @@ std::vector<int> shard_cells(const SweepRequest& request, const Shard& shard);
 
 // Fills in the default grid where n or h are empty (the paper's; n alone where the problem or group fixes it).
 SweepRequest with_defaults(SweepRequest request);
+// Checks the request with its defaults (every n it will solve); throws RequestError naming the field.
 void validate(const SweepRequest& request);
 
 // Called (serialised, from worker threads) as each cell finishes; return false to cancel the rest.
@@ -61,6 +62,9 @@ using CellCallback = std::function<bool(const SweepCell&)>;
 // then called in the process that assembles the result); a process that only computed cells gets an empty result.
 SweepResult sweep(const SweepRequest& request, const CellCallback& on_cell = {},
                   const std::function<bool()>& should_continue = {}, const WorkFarm* farm = nullptr);
+// sweep() of a request the caller has already validated: it is not checked again.
+SweepResult sweep_validated(const SweepRequest& request, const CellCallback& on_cell = {},
+                            const std::function<bool()>& should_continue = {}, const WorkFarm* farm = nullptr);
 
 // Joins the results of every shard of one sweep into the unsharded result: the same cells in grid order, seconds
 // summed over the parts. Throws RequestError (field "shard") when a part is missing, repeated, unsharded, stopped

@@ -9,7 +9,7 @@
 namespace lienewton {
 
 double field_rate(const ProblemSpec& problem) {
-  return group_family(problem.group).field_rate(problem, problem.start());
+  return problem.family().field_rate(problem, problem.start());
 }
 
 std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end) {

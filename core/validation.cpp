@@ -24,7 +24,7 @@ void check_tolerance(const fields::NumberField& field, double x, const std::stri
 }
 
 void check_problem_domain(const ProblemSpec& problem) {
-  const GroupFamily& family = group_family(problem.group);
+  const GroupFamily& family = problem.family();
   if (const std::optional<int> only = family.only_index(); only && *only != problem.n)
     unprocessable("n", "the group " + problem.group + " has one member, " + family.title(*only) + ": n must be " +
                            std::to_string(*only) + ", got " + std::to_string(problem.n));
@@ -70,7 +70,7 @@ void check_heavy_top(const ProblemSpec& problem) {
 
 void check_workspace(const ProblemSpec& problem, int threads) {
   if (!problem.g) return;
-  const double bytes = problem.program()->workspace_bytes(group_family(problem.group).algebra_dim(problem.n)) * threads;
+  const double bytes = problem.program()->workspace_bytes(problem.family().algebra_dim(problem.n)) * threads;
   if (bytes > user_field::kMaxWorkspaceBytes)
     throw RequestError(RequestError::Kind::too_large, "g",
                        "g's evaluation would hold " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
@@ -88,7 +88,7 @@ void check_user_field(const ProblemSpec& problem, int threads) {
   if (problem.parameters.size() > user_field::kMaxParameters)
     invalid("parameters", "at most " + std::to_string(user_field::kMaxParameters) + " parameters");
   for (const auto& [name, value] : problem.parameters) user_field::check_parameter(name, value);
-  const GroupFamily& family = group_family(problem.group);
+  const GroupFamily& family = problem.family();
   const auto program = problem.program();
   check_workspace(problem, threads);
   // A program whose value at the start is off the algebra is wrong everywhere in practice: say so before solving,
@@ -107,12 +107,12 @@ void check_user_field(const ProblemSpec& problem, int threads) {
 void check_start_point(const ProblemSpec& problem) {
   const auto& z = problem.z;
   if (!z) return;
-  const int n = problem.n, size = group_family(problem.group).matrix_size(n);
+  const int n = problem.n, size = problem.family().matrix_size(n);
   if (z->rows() != size || z->cols() != size)
     invalid("z", size == n ? "z must be an n x n array of rows" : "z must be a " + std::to_string(size) + " x " +
                                                                      std::to_string(size) + " array of rows");
   if (!z->allFinite()) invalid("z", "z must have finite entries");
-  const std::string why = group_family(problem.group).not_an_element(n, *z, "z");
+  const std::string why = problem.family().not_an_element(n, *z, "z");
   if (!why.empty()) unprocessable("z", why);
 }
 
@@ -122,7 +122,7 @@ void check_start_guess(const ProblemSpec& problem, const Eigen::MatrixXd& y0) {
   if (y0.rows() != n || y0.cols() != n)
     invalid("y0", "y0 must be a " + std::to_string(n) + " x " + std::to_string(n) + " array of rows (z's size)");
   if (!y0.allFinite()) invalid("y0", "y0 must have finite entries");
-  const GroupFamily& family = group_family(problem.group);
+  const GroupFamily& family = problem.family();
   std::string why = family.not_an_element(problem.n, y0, "y0");
   if (why.empty()) why = family.not_reachable(problem.n, y0, z);
   if (!why.empty()) unprocessable("y0", why);

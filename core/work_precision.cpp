@@ -170,6 +170,10 @@ void validate(const WorkPrecisionRequest& request) {
 
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {
   validate(request);
+  return work_precision_validated(request, on_series);
+}
+
+WorkPrecisionResult work_precision_validated(const WorkPrecisionRequest& request, const SeriesCallback& on_series) {
   const WorkPrecisionRequest req = with_defaults(request);
   const std::size_t per_choice = runs_per_choice(req);
   const auto start = std::chrono::steady_clock::now();

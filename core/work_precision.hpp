@@ -68,5 +68,7 @@ WorkPrecisionRequest with_defaults(const WorkPrecisionRequest& request);
 void validate(const WorkPrecisionRequest& request);
 using SeriesCallback = std::function<bool(const WorkPrecisionSeries&)>;
 WorkPrecisionResult work_precision(const WorkPrecisionRequest& request, const SeriesCallback& on_series = {});
+// work_precision() of a request the caller has already validated: it is not checked again.
+WorkPrecisionResult work_precision_validated(const WorkPrecisionRequest& request, const SeriesCallback& on_series = {});
 
 }  // namespace lienewton

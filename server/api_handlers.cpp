@@ -133,7 +133,8 @@ void ApiHandlers::throw_stopped(const CancellationToken& token, const std::strin
 }
 
 // A request parsed from its body and validated, with the output caps its type has (an integration's output is
-// fitted to them first; a work-precision diagram has none of its own).
+// fitted to them first; a work-precision diagram has none of its own). The only validation: the jobs run it with
+// the core's *_validated entry points.
 template <class Request>
 Request ApiHandlers::validated(const json& body, Request (*parse)(const json&, const Limits&)) const {
   Request request = parse(body, options_.limits);
@@ -155,7 +156,7 @@ bool ApiHandlers::pass_on(const Emit& emit, const CancellationToken& token, bool
 ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
   return [this, request = validated(body, solve_request_from_json)](const Emit& emit, const CancellationToken& token) {
     bool stopped = false;
-    SolveResult result = lienewton::solve(request, [&](const TraceRecord& t) {
+    SolveResult result = lienewton::solve_validated(request, [&](const TraceRecord& t) {
       progress(t.iteration);
       return pass_on(emit, token, stopped, t.path_point ? "path_point" : "iteration",
                      [&] { return to_json(t, request.solver.include_iterates); });
@@ -180,7 +181,7 @@ ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
     };
     SweepResult result;
     try {
-      result = lienewton::sweep(request, [&](const SweepCell& cell) {
+      result = lienewton::sweep_validated(request, [&](const SweepCell& cell) {
         progress(index++);
         metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
         return pass_on(emit, token, stopped, "cell", [&] { return to_json(cell); });
@@ -205,7 +206,7 @@ ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
     };
     BasinResult result;
     if (!stopped) {
-      result = lienewton::basins(request, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
+      result = lienewton::basins_validated(request, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
         progress(rows++);
         for (const auto& pixels : row.pixels)
           for (const BasinPixel& p : pixels) metrics_.solve_finished(std::string(to_string(p.status)), p.iterations);
@@ -221,7 +222,7 @@ ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
   return [this, request = validated(body, integrate_request_from_json)](const Emit& emit,
                                                                         const CancellationToken& token) {
     bool stopped = false;
-    IntegrateResult result = lienewton::integrate(request, [&](const StepRecord& step) {
+    IntegrateResult result = lienewton::integrate_validated(request, [&](const StepRecord& step) {
       progress(step.step);
       return pass_on(emit, token, stopped, "step", [&] { return to_json(step); });
     });
@@ -237,7 +238,7 @@ ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
                                                                              const CancellationToken& token) {
     int index = 0;
     bool stopped = false;
-    WorkPrecisionResult result = lienewton::work_precision(request, [&](const WorkPrecisionSeries& series) {
+    WorkPrecisionResult result = lienewton::work_precision_validated(request, [&](const WorkPrecisionSeries& series) {
       progress(index++);
       return pass_on(emit, token, stopped, "series", [&] { return to_json(series); });
     });

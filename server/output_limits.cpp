@@ -23,7 +23,7 @@ void refuse_beyond(double values, const OutputLimits& limits, const char* field,
 
 // Numbers in one state y: its matrix is the group's size (n x n on SO(n), 4 x 4 on SE(3), 6 x 6 on SO(3) x R^3).
 double state_values(const ProblemSpec& problem) {
-  const double size = group_family(problem.group).matrix_size(problem.n);
+  const double size = problem.family().matrix_size(problem.n);
   return size * size;
 }
 

@@ -78,7 +78,7 @@ std::string take_string(json& request, const char* field) {
 // Frames are the body axes of each state's rotation part, as its group extracts it (GroupFamily::rotation): on
 // groups with one (SO(3), SE(3), SO(3) x R^3, SE(3) x R^6), where n is 3.
 void check_rotations(const ProblemSpec& p) {
-  const GroupFamily& family = group_family(p.group);
+  const GroupFamily& family = p.family();
   const std::string why = "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR): ";
   if (p.n != 3) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
   const int size = family.matrix_size(p.n);
@@ -88,7 +88,7 @@ void check_rotations(const ProblemSpec& p) {
 
 // The rotation part of each state (check_rotations has accepted the group).
 std::vector<Eigen::Matrix3d> rotations(const ProblemSpec& p, const std::vector<Eigen::MatrixXd>& states) {
-  const GroupFamily& family = group_family(p.group);
+  const GroupFamily& family = p.family();
   std::vector<Eigen::Matrix3d> out;
   for (const Eigen::MatrixXd& y : states) out.push_back(*family.rotation(p.n, y));
   return out;
@@ -124,7 +124,7 @@ std::vector<E> take_enum_list(json& request, const char* field, std::optional<E>
   return out;
 }
 
-std::string group_name(const ProblemSpec& p) { return group_family(p.group).title(p.n); }
+std::string group_name(const ProblemSpec& p) { return p.family().title(p.n); }
 
 // The picture's format: png unless the request says svg.
 render::ImageFormat take_format(json& request) {
@@ -166,7 +166,7 @@ std::string solver_facts(const SolverOptions& s, bool newton) {
 
 // The group of a grid over N: "SO(3)" for one N, "SO(N)" for several.
 std::string group_text(const ProblemSpec& p, const std::vector<int>& n) {
-  const std::string first = group_family(p.group).title(n.front());
+  const std::string first = p.family().title(n.front());
   if (std::all_of(n.begin(), n.end(), [&](int v) { return v == n.front(); })) return first;
   const std::size_t paren = first.find('(');
   return paren == std::string::npos ? first : first.substr(0, paren) + "(N)";
@@ -304,7 +304,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     r.solver.include_iterates = true;
     before_work(hooks);
     validate(r);
-    SolveResult result = solve(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
+    SolveResult result = solve_validated(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
     std::vector<Eigen::MatrixXd> states;
@@ -327,7 +327,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   before_work(hooks);
   validate(r);
   bool stopped = false;
-  IntegrateResult result = integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+  IntegrateResult result =
+      integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
   frames = rotations(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
   start = frames.front();
@@ -383,7 +384,7 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
   validate(r);
   int index = 0;
   bool stopped = false;
-  const SweepResult result = sweep(r, [&](const SweepCell& cell) {
+  const SweepResult result = sweep_validated(r, [&](const SweepCell& cell) {
     if (hooks.on_cell) hooks.on_cell(cell);
     return !(stopped = !keep_going(hooks, index++));
   });
@@ -404,7 +405,7 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
   validate(r);
   int index = 0;
   bool stopped = false;
-  const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
+  const BasinResult map = basins_validated(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
     if (hooks.on_cell) {  // every pixel is a solve, counted in the metrics as a sweep cell is
       SweepCell counted;
       for (const auto& pixels : row.pixels)
@@ -431,7 +432,7 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   validate(r);
   int index = 0;
   bool stopped = false;
-  const WorkPrecisionResult result = work_precision(r, [&](const WorkPrecisionSeries&) {
+  const WorkPrecisionResult result = work_precision_validated(r, [&](const WorkPrecisionSeries&) {
     return !(stopped = !keep_going(hooks, index++));
   });
   if (stopped) throw RenderCancelled{};
@@ -455,7 +456,7 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
                                                     "heavy-top do)");
   bool stopped = false;
   const IntegrateResult result =
-      integrate(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
+      integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
   if (result.status != Status::converged)
     throw ApiError(422, "unprocessable", "h", "the integration ended " + std::string(to_string(result.status)) +

@@ -1,15 +1,19 @@
 // The gate before long work: a request takes its work slot, the per-client limit and its cancellation token
-// before its user's program is compiled or evaluated; the program is compiled once per request and n; and every
-// route, plain or streamed, stops soon after its client has gone.
+// before its user's program is compiled or evaluated; the program is compiled and the seeded start drawn once per
+// request and n, and the request validated once; and every route, plain or streamed, stops soon after its client
+// has gone.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <ostream>
 #include <thread>
 
+#include "core/problem_spec.hpp"
 #include "core/program_cache.hpp"
+#include "core/spec_cache.hpp"
 #include "server/json_codec.hpp"
 #include "test_server.hpp"
 
@@ -23,28 +27,46 @@ const std::string kSine = R"("g":"u = sin(y)*(2*y - 5*y^2); g = u - u'")";
 
 json error_of(const httplib::Result& r) { return json::parse(r->body)["error"]; }
 
-// POSTs `body` and returns how many programs the server compiled for it.
-std::uint64_t compilations_of(TestServer& s, const std::string& path, const std::string& body) {
-  const std::uint64_t before = ProgramCache::compilations();
+// What the server did for one request: programs compiled, seeded starts drawn, problems validated.
+struct Work {
+  std::uint64_t compilations = 0, seeded_starts = 0, validations = 0;
+  bool operator==(const Work&) const = default;
+};
+std::ostream& operator<<(std::ostream& os, const Work& w) {
+  return os << "{compilations " << w.compilations << ", seeded starts " << w.seeded_starts << ", validations "
+            << w.validations << "}";
+}
+
+// POSTs `body` and returns how far the process-wide counters moved while the server answered it.
+Work work_of(TestServer& s, const std::string& path, const std::string& body) {
+  const Work before{ProgramCache::compilations(), SpecCache::seeded_starts(), problem_validations()};
   auto r = s.client().Post(path, body, "application/json");
   EXPECT_TRUE(r);
   if (r) {
     EXPECT_EQ(r->status, 200) << path << ": " << r->body;
   }
-  return ProgramCache::compilations() - before;
+  return {ProgramCache::compilations() - before.compilations, SpecCache::seeded_starts() - before.seeded_starts,
+          problem_validations() - before.validations};
 }
 
-TEST(ServiceGate, AProgramIsCompiledOncePerRequestAndN) {
+// A request is resolved once: the handler validates it before a stream's status line and the core runs it without
+// checking it again; its program is compiled and its seeded start drawn once per n, however often validation, the
+// run and the output checks read them.
+TEST(ServiceGate, ARequestIsResolvedOncePerN) {
   TestServer s;
-  EXPECT_EQ(compilations_of(s, "/api/v1/solve", "{" + kSine + R"(,"n":3,"h":0.5})"), 1u);
-  EXPECT_EQ(compilations_of(s, "/api/v1/sweep", "{" + kSine + R"(,"methods":["newton-group","fixed-point"],)"
-                                                              R"("n":[3,4,5],"h":[0.25,0.5,1]})"),
-            3u);
-  EXPECT_EQ(compilations_of(s, "/api/v1/basins", "{" + kSine + R"(,"n":3,"h":1,"size":6})"), 1u);
-  EXPECT_EQ(compilations_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"h":0.1,"t_end":0.5})"), 1u);
-  // Without h: the default step is read off the field at the start, by the same compiled program.
-  EXPECT_EQ(compilations_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"t_end":0.5})"), 1u);
-  EXPECT_EQ(compilations_of(s, "/api/v1/render/heatmap", "{" + kSine + R"(,"n":[3,4],"h":[0.5,1]})"), 2u);
+  EXPECT_EQ(work_of(s, "/api/v1/solve", "{" + kSine + R"(,"n":3,"h":0.5})"), (Work{1, 1, 1}));
+  EXPECT_EQ(work_of(s, "/api/v1/solve", R"({"n":3,"h":0.5,"include_iterates":true})"), (Work{0, 1, 1}));
+  // A given z is the start: nothing is drawn.
+  EXPECT_EQ(work_of(s, "/api/v1/solve", R"({"n":3,"h":0.5,"z":[[1,0,0],[0,1,0],[0,0,1]]})"), (Work{0, 0, 1}));
+  EXPECT_EQ(work_of(s, "/api/v1/sweep", "{" + kSine + R"(,"methods":["newton-group","fixed-point"],)"
+                                                      R"("n":[3,4,5],"h":[0.25,0.5,1]})"),
+            (Work{3, 3, 3}));
+  EXPECT_EQ(work_of(s, "/api/v1/basins", "{" + kSine + R"(,"n":3,"h":1,"size":6})"), (Work{1, 1, 1}));
+  EXPECT_EQ(work_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"h":0.1,"t_end":0.5})"), (Work{1, 1, 1}));
+  // Without h: the codec validates the problem to read the default step off its field at the start (by the same
+  // compiled program and start), and the handler validates the whole request.
+  EXPECT_EQ(work_of(s, "/api/v1/integrate", "{" + kSine + R"(,"n":3,"t_end":0.5})"), (Work{1, 1, 2}));
+  EXPECT_EQ(work_of(s, "/api/v1/render/heatmap", "{" + kSine + R"(,"n":[3,4],"h":[0.5,1]})"), (Work{2, 2, 2}));
 }
 
 TEST(ServiceGate, ARepeatedNOrHIsRefusedNamingItsList) {
