@@ -48,6 +48,15 @@ struct StepRecord {
   double h = 0;          // the step's size (fixed steps: t_end / steps; adaptive: the accepted step)
   std::optional<double> error_estimate{};  // adaptive: the accepted step's scaled local error estimate (<= 1)
   int rejected = 0;      // adaptive: tries rejected before this step was accepted (error above 1 or a failing stage)
+  // RKMK methods: Newton matrices formed (Jacobians dg, or the stage system's) and LU factorizations made in this
+  // step, its rejected tries included; the simplified Newton (dexpinv-0) keeps both across steps. Not counted (absent)
+  // for DIRK methods, whose stages the equation solvers solve.
+  std::optional<int> jacobian_evaluations{};
+  std::optional<int> factorizations{};
+  void add_matrices(int jacobians, int lus) {
+    jacobian_evaluations = jacobian_evaluations.value_or(0) + jacobians;
+    factorizations = factorizations.value_or(0) + lus;
+  }
 };
 
 struct IntegrateResult {
@@ -62,6 +71,8 @@ struct IntegrateResult {
   int total_iterations = 0;            // Newton (or fixed-point) iterations summed over every stage of every step
   int substeps = 0;                    // steps taken, halved ones counted as theirs
   double mean_iterations = 0;          // total_iterations / steps taken
+  std::optional<int> jacobian_evaluations{};  // summed over the steps where counted (StepRecord)
+  std::optional<int> factorizations{};
   Eigen::MatrixXd y;                   // final state
   std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))
   std::vector<double> frame_times;

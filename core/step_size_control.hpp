@@ -7,7 +7,8 @@
 //   h_new = h min(facmax, max(facmin, fac err^(-1/(p+1))))                                       (4.13)
 // with the safety factor fac; after a rejected step facmax = 1 (II.4: do not grow right after a rejection).
 // The step is accepted when err <= 1 and y2 (not the extrapolated value) is kept, so the result is the method's
-// own. docs/integrators.md says why step doubling rather than an embedded pair.
+// own. Implicit RKMK methods give an embedded estimate instead (integrators/embedded_estimate.hpp), measured in the
+// same norm with the exponent of its own order. docs/integrators.md says which integrators use which.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -17,7 +18,7 @@ namespace lienewton {
 struct StepSizeControl {
   double rtol;
   double atol;
-  int order;  // p of the integrator (order_of)
+  int order;  // p of the integrator (order_of), or the embedded estimate's order
 
   static constexpr double kSafety = 0.9;
   static constexpr double kMinFactor = 0.2;
@@ -30,9 +31,13 @@ struct StepSizeControl {
   // The scaled error estimate of y2 (two half steps) against y1 (one whole step), both from y0.
   double error(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& y1, const Eigen::MatrixXd& y2) const {
     const double richardson = std::ldexp(1.0, order) - 1.0;
-    const Eigen::ArrayXXd scale = atol + rtol * y0.array().abs().max(y2.array().abs());
-    const Eigen::ArrayXXd e = (y2 - y1).array() / (richardson * scale);
-    return std::sqrt(e.square().mean());
+    return scaled(y0, y2, (y2 - y1) / richardson);
+  }
+
+  // The scaled root-mean-square size of an error e of y1, a step from y0.
+  double scaled(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& y1, const Eigen::MatrixXd& e) const {
+    const Eigen::ArrayXXd scale = atol + rtol * y0.array().abs().max(y1.array().abs());
+    return std::sqrt((e.array() / scale).square().mean());
   }
 
   // The factor of the next step from the error estimate err of the last try (4.13).

@@ -420,6 +420,7 @@ Request read_request(const json& body, fields::Route route, const Limits& limits
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json optional_number(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
+json optional_integer(const std::optional<int>& v) { return v ? json(*v) : json(nullptr); }
 
 }  // namespace
 
@@ -919,7 +920,9 @@ json to_json(const StepRecord& s) {
            {"substeps", s.substeps},
            {"h", finite_or_null(s.h)},
            {"error_estimate", optional_number(s.error_estimate)},
-           {"rejected", s.rejected}};
+           {"rejected", s.rejected},
+           {"jacobian_evaluations", optional_integer(s.jacobian_evaluations)},
+           {"factorizations", optional_integer(s.factorizations)}};
   return add_invariants(out, s.invariants, "", "");
 }
 
@@ -938,6 +941,8 @@ json to_json(const IntegrateResult& r) {
               {"total_iterations", r.total_iterations},
               {"substeps", r.substeps},
               {"mean_iterations", finite_or_null(r.mean_iterations)},
+              {"jacobian_evaluations", optional_integer(r.jacobian_evaluations)},
+              {"factorizations", optional_integer(r.factorizations)},
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},
               {"frame_times", std::move(times)},

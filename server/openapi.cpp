@@ -41,6 +41,13 @@ json invariant_numbers(json properties, const std::string& prefix, const std::st
   return properties;
 }
 json integer(const char* description) { return json{{"type", "integer"}, {"description", description}}; }
+json nullable_integer(const std::string& description) {
+  return json{{"type", "integer"}, {"nullable", true}, {"description", description}};
+}
+constexpr const char* kJacobianEvaluations =
+    "RKMK methods: Newton matrices formed (Jacobians dg or the stage system's); the simplified Newton "
+    "(differential dexpinv-0) keeps its matrix across steps while it contracts; null for DIRK methods";
+constexpr const char* kFactorizations = "RKMK methods: LU factorizations made; null for DIRK methods";
 json array_of(json items) { return json{{"type", "array"}, {"items", std::move(items)}}; }
 json object(json properties, std::vector<std::string> required = {}, bool closed = true) {
   json o{{"type", "object"}, {"properties", std::move(properties)}};
@@ -262,8 +269,11 @@ json schemas() {
                                                  "(adaptive: 2, the half steps whose product is y)")},
                             {"h", number("the step's size (adaptive: the accepted step)")},
                             {"error_estimate", nullable_number("adaptive: the accepted step's scaled local error estimate "
-                                                               "(step doubling; at most 1); null with fixed steps")},
-                            {"rejected", integer("adaptive: tries rejected before this step was accepted")}},
+                                                               "(implicit RKMK: embedded; others: step doubling; at most "
+                                                               "1); null with fixed steps")},
+                            {"rejected", integer("adaptive: tries rejected before this step was accepted")},
+                            {"jacobian_evaluations", nullable_integer(kJacobianEvaluations)},
+                            {"factorizations", nullable_integer(kFactorizations)}},
                            {}, false);
   s["StepRecord"]["properties"] = invariant_numbers(s["StepRecord"]["properties"], "", "", "at the step's end state: ");
   s["IntegrateResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"steps", array_of(ref("StepRecord"))},
@@ -272,6 +282,8 @@ json schemas() {
                                  {"total_iterations", integer("iterations summed over every stage of every step")},
                                  {"substeps", integer("steps taken, halved ones counted as theirs")},
                                  {"mean_iterations", nullable_number("total_iterations per step")},
+                                 {"jacobian_evaluations", nullable_integer(std::string(kJacobianEvaluations) + ", summed over the steps")},
+                                 {"factorizations", nullable_integer(std::string(kFactorizations) + ", summed over the steps")},
                                  {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
                                  {"frame_steps", json{{"type", "array"}, {"items", integer("")},

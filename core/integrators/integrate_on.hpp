@@ -2,9 +2,10 @@
 // integrate_on(): the request's integrator on group G, by fixed or adaptive steps (stepper.hpp takes each step).
 // Fixed steps: a step whose stages cannot reach the continued root is taken again as two half steps, down to
 // 2^-kMaxHalvings of the step, inside the same output step; failing that the integration ends with the stage's
-// status, naming the step. Adaptive steps (rtol/atol, step_size_control.hpp): every try is one whole step and two
-// half steps; it is rejected when the error estimate exceeds 1 or any of them fails, and the integration ends with
-// min_step below the minimum step or max_steps at the bound on tries, naming t.
+// status, naming the step. Adaptive steps (rtol/atol, step_size_control.hpp): every try of an implicit RKMK method
+// is one step with its embedded estimate (embedded_estimate.hpp), of the others one whole step and two half steps;
+// it is rejected when the error estimate exceeds 1 or a step fails, and the integration ends with min_step below
+// the minimum step or max_steps at the bound on tries, naming t.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -34,6 +35,7 @@ class Integration {
         conserves_(has_invariants(req.problem)), y_(group.element(y0)),
         drift_(invariants(y_), conserves_ ? invariant_scales(req.problem, y0) : InvariantValues{}) {
     res_.adaptive = req.adaptive();
+    if (res_.adaptive) stepper_.estimate_errors();
   }
 
   IntegrateResult run() {
@@ -79,6 +81,8 @@ class Integration {
       return next;
     }
     rec.iterations = attempt.iterations;
+    rec.jacobian_evaluations = attempt.jacobian_evaluations;
+    rec.factorizations = attempt.factorizations;
     rec.residual = attempt.residual;
     if (halvings == kMaxHalvings || attempt.status == Status::cancelled) {
       rec.status = attempt.status;
@@ -119,7 +123,9 @@ class Integration {
     std::optional<Element> y;
     double error = 0.0;
   };
-  Try try_step(const StepSizeControl& control, double t, double dt, StepRecord& attempt, std::string& why) {
+  Try try_step(const StepSizeControl& control, double t, double dt, bool refine, StepRecord& attempt,
+               std::string& why) {
+    if (stepper_.estimates_error()) return try_embedded(control, t, dt, refine, attempt, why);
     const auto first = stepper_.take(y_, t, dt / 2, attempt);
     const auto second = first ? stepper_.take(*first, t + dt / 2, dt / 2, attempt) : std::nullopt;
     const auto whole = second ? stepper_.take(y_, t, dt, attempt) : std::nullopt;
@@ -134,6 +140,29 @@ class Integration {
       return {std::nullopt, err};
     }
     return {second, err};
+  }
+
+  // One step and its embedded estimate; refine: the first try or the one after a rejection, where an estimate
+  // above 1 is evaluated again (embedded_estimate.hpp).
+  Try try_embedded(const StepSizeControl& control, double t, double dt, bool refine, StepRecord& attempt,
+                   std::string& why) {
+    const auto next = stepper_.take(y_, t, dt, attempt);
+    if (!next) {
+      why = "the try at h = " + format_number(dt) + " failed (" + std::string(to_string(attempt.status)) +
+            "): " + stepper_.failure();
+      return {};
+    }
+    const auto size = [&](const typename G::Vector& e) {
+      const Eigen::MatrixXd y0 = group_.matrix(y_);
+      return control.scaled(y0, group_.matrix(*next), group_.matrix(group_.times_exp(y_, e)) - y0);
+    };
+    double err = size(stepper_.error_estimate(false, attempt));
+    if (refine && !(err <= 1.0)) err = size(stepper_.error_estimate(true, attempt));
+    if (!(err <= 1.0)) {
+      why = "the error estimate at h = " + format_number(dt) + " is " + format_number(err);
+      return {std::nullopt, err};
+    }
+    return {next, err};
   }
 
   // t to 12 digits: where the steps fell below the minimum step, 3 digits would not tell t from a neighbour.
@@ -164,7 +193,8 @@ class Integration {
 
   void adaptive_steps() {
     const StepSizeControl control{req_.rtol.value_or(req_.atol.value_or(0.0)),
-                                  req_.atol.value_or(req_.rtol.value_or(0.0)), tab_.order};
+                                  req_.atol.value_or(req_.rtol.value_or(0.0)),
+                                  stepper_.estimates_error() ? stepper_.estimate_order() : tab_.order};
     double t = 0.0, dt = std::min(*req_.h, req_.t_end);
     double h_smallest = req_.t_end, h_largest = 0.0;
     bool after_rejection = false;
@@ -178,8 +208,10 @@ class Integration {
       ++tries;
       StepRecord attempt = rec;
       attempt.status = Status::converged;
-      const Try step = try_step(control, t, dt, attempt, why);
+      const Try step = try_step(control, t, dt, after_rejection || res_.steps.empty(), attempt, why);
       rec.iterations = attempt.iterations;
+      rec.jacobian_evaluations = attempt.jacobian_evaluations;
+      rec.factorizations = attempt.factorizations;
       if (!step.y) {
         ++rec.rejected;
         dt *= std::isfinite(step.error) && step.error > 0.0 ? control.factor(step.error, true)
@@ -194,7 +226,7 @@ class Integration {
       attempt.t = t;
       attempt.h = dt;
       attempt.error_estimate = step.error;
-      attempt.substeps = 2;
+      attempt.substeps = stepper_.estimates_error() ? 1 : 2;
       h_smallest = std::min(h_smallest, dt);
       h_largest = std::max(h_largest, dt);
       if (!record(attempt, last)) return cancelled_after(attempt.step);
@@ -239,6 +271,10 @@ class Integration {
     res_.orthogonality_error = std::max(res_.orthogonality_error, group_.defect(y_));
     res_.steps.push_back(rec);
     res_.total_iterations += rec.iterations;
+    if (rec.jacobian_evaluations) {
+      res_.jacobian_evaluations = res_.jacobian_evaluations.value_or(0) + *rec.jacobian_evaluations;
+      res_.factorizations = res_.factorizations.value_or(0) + *rec.factorizations;
+    }
     res_.substeps += rec.substeps;
     res_.rejected += rec.rejected;
     keep_frame(rec.step, rec.t, last);

@@ -11,23 +11,30 @@
 // The request's differential picks the Newton matrix:
 //   exact              that Jacobian at every iterate: Newton on the truncated system, quadratic;
 //   dexpinv-1          frozen per step at the first iterate, with dexpinv ~ I + ad/2 (3.11), dexp ~ I - ad/2 (3.17);
-//   dexpinv-0          frozen per step: I - h A (x) dg_{y_k}, dexpinv ~ dexp ~ I (3.10)/(3.16), the classical
-//                      simplified Newton;
+//   dexpinv-0          I - h A (x) dg_{y_k}, dexpinv ~ dexp ~ I (3.10)/(3.16): the classical simplified Newton,
+//                      solved block by block (stage_decoupling.hpp) and kept across iterations and steps by the
+//                      caller while it contracts;
 //   finite-difference  forward differences of F at every iterate (3.19);
 // and the fixed point (method fixed-point) iterates K <- dexpinv~_{Theta_i}(w_i). Newton Version 1 and 2 are the
 // same iteration here: the system already lives in the algebra.
 //
 // Which root: at h = 0 the system's root is K_i = g(t_k, y_k) for every i, and the step needs the root continued
-// from it. continued_stages() accepts the method's solve from the caller's start when its iterates contract
-// (kMaxContraction; the fixed point's kFixedPointContraction) and its Theta lies within acceptance_radius of the
-// branch's tangent prediction Theta_i = c_i h g(t_k, y_k) (the tests continuation.hpp applies to a stage of
-// (1.1)); otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
+// from it. continued_stages() accepts the method's solve when its iterates contract (kMaxContraction; the fixed
+// point's kFixedPointContraction) and its Theta lies within acceptance_radius of a prediction on the branch:
+//   h ||dg_{y_k}|| <= 1   from the caller's start, around the branch's tangent Theta_i = c_i h g(t_k, y_k) (the
+//                         tests continuation.hpp applies to a stage of (1.1));
+//   h ||dg_{y_k}|| > 1    (stiff) from K = 0, around its first Newton iterate: the linearly implicit stages
+//                         K = (I - h A (x) J)^-1 (g(t_k + c_i h, y_k))_i, exact for a field linear in the chart, and
+//                         on the linearisation's branch for every h when A's and -J's eigenvalues lie in the right
+//                         half-plane (I - tau A (x) J is then regular for every tau in [0, h]);
+// otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
 // predictor; exact Newton corrector with the same two tests; step controlled as continuation.hpp's), and the
 // method's solve at h must stay at the branch's root. docs/integrators.md.
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +44,7 @@
 #include "core/solver_options.hpp"
 #include "core/solvers/continuation.hpp"
 #include "core/solvers/iteration_monitor.hpp"
+#include "stage_decoupling.hpp"
 #include "tableau.hpp"
 
 namespace lienewton {
@@ -48,6 +56,10 @@ struct StageSolution {
   std::vector<double> residuals;    // h ||F(K_n)||, n = 0, 1, ..., of the last solve
   bool continued = false;           // the root continued from h = 0
   std::string reason;
+  Eigen::VectorXd first_iterate;    // K after the last solve's first step (its start if it took none)
+  double contraction = 0;           // the largest ratio of successive corrections of the last solve
+  int jacobian_evaluations = 0;     // Newton matrices formed (the caller's decoupled one not counted here)
+  int factorizations = 0;
   double residual() const { return residuals.empty() ? 0.0 : residuals.back(); }
 };
 
@@ -70,11 +82,20 @@ class RkmkStages {
   RkmkStages at_step(double h) const {
     RkmkStages s = *this;
     s.h_ = h;
+    s.stiffness_.reset();
     return s;
   }
 
   int size() const { return tab_->stages() * q_; }
   double h() const { return h_; }
+  // h ||dg_{y_k}||_F: above 1 the step is stiff (the tangent's prediction is no guide to the root).
+  double stiffness() const {
+    if (!stiffness_) {
+      field_->set_time(t_);
+      stiffness_ = h_ * Eigen::MatrixXd(field_->dg_matrix(group_, y_)).norm();
+    }
+    return *stiffness_;
+  }
   Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
   Vector theta(const Eigen::VectorXd& k, int i) const {
     Vector th = zero_vector(group_);
@@ -167,14 +188,17 @@ class RkmkStages {
     return m;
   }
 
-  // The request's method from k: Newton (the Jacobian of d, frozen per solve for dexpinv-0/1) or the fixed point.
-  // Stops when h ||F|| <= max(tol, the rounding floor), and as soon as a step fails to contract.
-  StageSolution solve(Eigen::VectorXd k, Method method, Differential d, const SolverOptions& opt) const {
+  // The request's method from k: Newton (the Jacobian of d, frozen per solve for dexpinv-0/1; with `simplified`, its
+  // factored decoupled matrix for dexpinv-0) or the fixed point. Stops when h ||F|| <= max(tol, the rounding
+  // floor), and as soon as a step fails to contract.
+  StageSolution solve(Eigen::VectorXd k, Method method, Differential d, const SolverOptions& opt,
+                      const integrators::DecoupledNewtonMatrix* simplified = nullptr) const {
     StageSolution out;
     const bool newton = method != Method::fixed_point;
     const bool frozen = d == Differential::dexpinv_0 || d == Differential::dexpinv_1;
+    const bool decoupled = newton && simplified && d == Differential::dexpinv_0;
     const double contraction = newton ? kMaxContraction : kFixedPointContraction;
-    const double kappa = conditioning();
+    const double kappa = stiffness();
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     double previous = std::numeric_limits<double>::infinity();
     for (int n = 0;; ++n) {
@@ -198,8 +222,12 @@ class RkmkStages {
         break;
       }
       Eigen::VectorXd dk = -e.f;  // the fixed point: K_i <- dexpinv~_{Theta_i}(w_i)
-      if (newton) {
+      if (decoupled) {
+        dk = simplified->solve(-e.f);
+      } else if (newton) {
         if (!frozen || n == 0) {
+          ++out.jacobian_evaluations;
+          ++out.factorizations;
           lu.compute(jacobian(k, e, d));
           if (!detail::well_conditioned(lu)) {
             out.status = Status::singular_differential;
@@ -216,9 +244,12 @@ class RkmkStages {
                      " after " + format_number(previous) + ")";
         break;
       }
+      if (n > 0 && step > kNegligibleStep) out.contraction = std::max(out.contraction, step / previous);
       previous = step;
       k += dk;
+      if (n == 0) out.first_iterate = k;
     }
+    if (out.first_iterate.size() == 0) out.first_iterate = k;
     out.iterations = static_cast<int>(out.residuals.size()) - 1;
     out.k = std::move(k);
     return out;
@@ -264,13 +295,8 @@ class RkmkStages {
     return -0.5 * Eigen::MatrixXd(group_.ad_matrix(e.w[static_cast<std::size_t>(i)])) + (id + half_ad) * dg * (id - half_ad);
   }
 
-  // h ||dg_{y_k}||_F: rounding eps in Y_i is amplified to ~ eps h ||dg|| in h F.
-  double conditioning() const {
-    field_->set_time(t_);
-    return h_ * Eigen::MatrixXd(field_->dg_matrix(group_, y_)).norm();
-  }
-
-  // The rounding floor of h ||F||: 64 eps sqrt(sq) (1 + ||Theta|| + h ||w||) (1 + kappa).
+  // The rounding floor of h ||F||: 64 eps sqrt(sq) (1 + ||Theta|| + h ||w||) (1 + kappa), kappa = stiffness():
+  // rounding eps in Y_i is amplified to ~ eps h ||dg|| in h F.
   double floor(const Evaluation& e, double kappa) const {
     double scale = 1.0;
     for (std::size_t i = 0; i < e.theta.size(); ++i) scale += e.theta[i].norm() + h_ * e.w[i].norm();
@@ -283,24 +309,30 @@ class RkmkStages {
   Element y_;
   double t_, h_;
   int q_;
+  mutable std::optional<double> stiffness_;  // evaluated once per step size: every solve's floor reads it
 };
 
-// The stages continued from h = 0 (see the file comment): the method's solve from start, checked; else the branch
-// followed from h = 0 and the method's solve at h from its root.
+// The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0),
+// checked; else the branch followed from h = 0 and the method's solve at h from its root.
 template <LieGroup G>
 StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& start, Method method,
-                               Differential d, const SolverOptions& opt) {
+                               Differential d, const SolverOptions& opt,
+                               const integrators::DecoupledNewtonMatrix* simplified = nullptr) {
   constexpr int kMaxPathSteps = 400;
   constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
+  constexpr double kStiff = 1.0;            // h ||dg_{y_k}||_F above which the step starts linearly implicit
+  const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff;
   const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
-  const Eigen::VectorXd tangent_theta = sys.thetas(root0);  // Theta_i = c_i h g(y_k): the tangent's prediction
-  StageSolution first = sys.solve(start, method, d, opt);
+  StageSolution first = sys.solve(stiff ? Eigen::VectorXd(Eigen::VectorXd::Zero(sys.size())) : start, method, d, opt,
+                                  simplified);
+  // The prediction the root is checked against: the linearly implicit stages, or the tangent's.
+  const Eigen::VectorXd predicted = sys.thetas(stiff ? first.first_iterate : root0);
   if (first.status == Status::converged &&
-      (sys.thetas(first.k) - tangent_theta).norm() <= acceptance_radius(tangent_theta.norm())) {
+      (sys.thetas(first.k) - predicted).norm() <= acceptance_radius(predicted.norm())) {
     first.continued = true;
     return first;
   }
-  int spent = first.iterations;
+  int spent = first.iterations, jacobians = first.jacobian_evaluations, factorizations = first.factorizations;
   SolverOptions corrector = opt;  // the path's points need not be solved to the request's tol, only its end
   corrector.max_iterations = kMaxCorrectorIterations;
   corrector.tol = std::max(opt.tol, kPathTolerance);
@@ -313,6 +345,8 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     const Eigen::VectorXd pred = k + (next - tau) * slope;
     const StageSolution c = at.solve(pred, Method::newton_group, Differential::exact, corrector);
     spent += c.iterations;
+    jacobians += c.jacobian_evaluations;
+    factorizations += c.factorizations;
     const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
     if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move)) {
       slope = (c.k - k) / (next - tau);
@@ -325,13 +359,17 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   }
   if (tau < sys.h()) {
     first.iterations = spent;
+    first.jacobian_evaluations = jacobians;
+    first.factorizations = factorizations;
     first.reason = "the stages' branch from h = 0 could not be followed past h = " + format_number(tau) +
                    " (a fold, or too stiff a turn); the method from its start: " + first.reason;
     if (first.status == Status::converged) first.status = Status::fold;
     return first;
   }
-  StageSolution last = sys.solve(k, method, d, opt);
+  StageSolution last = sys.solve(k, method, d, opt, simplified);
   last.iterations += spent;
+  last.jacobian_evaluations += jacobians;
+  last.factorizations += factorizations;
   const Eigen::VectorXd theta = sys.thetas(k);
   last.continued = last.status == Status::converged &&
                    (sys.thetas(last.k) - theta).norm() <= 1e-6 * (1.0 + theta.norm());

@@ -4,7 +4,11 @@
 // (continuation.hpp: the path from h = 0 of the stage, which starts at the explicit Lie-Euler value
 // Z_i exp(h a_ii g(Z_i)), the tangent's prediction, unless the predictor is none). An implicit RKMK method solves its
 // coupled stage system at the root continued from h = 0 (rkmk_stages.hpp), from the stages extrapolated from the
-// previous step (lie-euler; none: from K = 0). An explicit RKMK method only evaluates.
+// previous step (lie-euler; none: from K = 0), and gives the embedded error estimate of its step
+// (embedded_estimate.hpp). With the simplified Newton (dexpinv-0) its decoupled matrix (stage_decoupling.hpp) is
+// kept across steps: J = dg_{y_k} is evaluated again only after a solve that contracted slowly (rate above
+// kReuseContraction) or failed with the kept one, and the blocks factored again when J or h changed (Hairer &
+// Wanner II, section IV.8). An explicit RKMK method only evaluates.
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,7 +18,10 @@
 #include "core/integrate.hpp"
 #include "core/problems.hpp"
 #include "core/solvers/continuation.hpp"
+#include "core/solvers/run_method.hpp"
+#include "embedded_estimate.hpp"
 #include "rkmk_stages.hpp"
+#include "stage_decoupling.hpp"
 #include "tableau.hpp"
 
 namespace lienewton::integrators {
@@ -50,7 +57,12 @@ class Stepper {
   using Vector = typename G::Vector;
 
   Stepper(const G& group, VectorField<G>& field, const Tableau& tab, const SolverOptions& opt, Predictor predictor)
-      : group_(group), field_(&field), tab_(&tab), opt_(opt), predictor_(predictor) {}
+      : group_(group), field_(&field), tab_(&tab), opt_(opt), predictor_(predictor) {
+    if (tab.form == Form::implicit_rkmk) {
+      matrix_.emplace(tab);
+      weights_ = embedded_weights(tab, matrix_->decoupling().gamma0);
+    }
+  }
 
   // y at t + dt, or nothing with rec's status and failure() set by the failing stage; rec sums the stages' work.
   std::optional<Element> take(const Element& y, double t, double dt, StepRecord& rec) {
@@ -65,8 +77,24 @@ class Stepper {
   // What the last failing step ran into.
   const std::string& failure() const { return failure_; }
 
+  // Whether take() can give an embedded error estimate (implicit RKMK methods), and its order s.
+  bool estimates_error() const { return weights_.has_value(); }
+  // From now on every successful step computes its estimate.
+  void estimate_errors() { want_estimate_ = estimates_error(); }
+  int estimate_order() const { return weights_ ? weights_->order : 0; }
+  // The last successful implicit RKMK step's embedded error estimate err, in the algebra at its start y_k; refined:
+  // with g evaluated again at y_k exp(err) (rec counts the evaluation's matrices).
+  Vector error_estimate(bool refined, StepRecord& rec) {
+    if (!refined) return last_.error;
+    field_->set_time(last_.t);
+    const Vector g = field_->g(group_.times_exp(last_.y, last_.error));
+    prepare_filter(last_.y, last_.t, last_.h, rec);
+    return filtered(g, last_.h);
+  }
+
  private:
   std::optional<Element> explicit_step(const Element& y, double t, double dt, StepRecord& rec) {
+    rec.add_matrices(0, 0);
     Element next = explicit_rkmk_step(group_, *field_, *tab_, y, t, dt);
     if (group_.matrix(next).allFinite()) return next;
     rec.status = Status::non_finite;
@@ -109,18 +137,74 @@ class Stepper {
       start = previous_ && previous_->first != t
                   ? sys.along(g, Vector((g - previous_->second) / (t - previous_->first)))
                   : sys.constant(g);
-    const StageSolution stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_);
+    const bool simplified = opt_.method != Method::fixed_point && opt_.differential == Differential::dexpinv_0;
+    if (simplified) prepare_matrix(y, t, dt, rec);
+    StageSolution stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_,
+                                            simplified ? &*matrix_ : nullptr);
+    if (simplified && !stages.continued && !jacobian_fresh_) {  // the kept J may be what failed: once more with dg_{y_k}
+      rec.iterations += stages.iterations;
+      rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
+      refresh_matrix(y, t, dt, rec);
+      stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_, &*matrix_);
+    }
     rec.iterations += stages.iterations;
+    rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
     rec.residual = std::max(rec.residual, stages.residual());
+    reuse_jacobian_ = simplified && stages.continued && stages.contraction <= kReuseContraction;
     if (!stages.continued) {
       rec.status = stages.status == Status::converged ? Status::fold : stages.status;
       failure_ = "stages (h = " + format_number(dt) + "): " + stages.reason;
       return std::nullopt;
     }
     previous_.emplace(t, g);
+    if (want_estimate_) {
+      prepare_filter(y, t, dt, rec);
+      last_ = {y, t, dt, stage_sum(sys.thetas(stages.k)), {}};
+      last_.error = filtered(g, dt);
+    }
     return sys.next(stages.k);
   }
 
+  // Simplified Newton: J = dg_{y_k} at this step unless the last one may be kept; the blocks for dt.
+  void prepare_matrix(const Element& y, double t, double dt, StepRecord& rec) {
+    if (!jacobian_ || !reuse_jacobian_) return refresh_matrix(y, t, dt, rec);
+    jacobian_fresh_ = false;
+    if (matrix_->h() != dt) factorize(dt, rec);
+  }
+  void refresh_matrix(const Element& y, double t, double dt, StepRecord& rec) {
+    field_->set_time(t);
+    jacobian_ = Eigen::MatrixXd(field_->dg_matrix(group_, y));
+    rec.add_matrices(1, 0);
+    jacobian_fresh_ = true;
+    factorize(dt, rec);
+  }
+  void factorize(double dt, StepRecord& rec) {
+    matrix_->factorize(dt, *jacobian_);
+    rec.add_matrices(0, 1);
+  }
+  // The estimate's filter (I - h gamma0 J)^-1 with J = dg at this step's start, unless the simplified Newton's kept
+  // one is already factored at dt (any J near dg_{y_k} filters; Radau5 uses its Newton matrix's).
+  void prepare_filter(const Element& y, double t, double dt, StepRecord& rec) {
+    if (opt_.differential == Differential::dexpinv_0 && opt_.method != Method::fixed_point && jacobian_ &&
+        matrix_->h() == dt)
+      return;
+    refresh_matrix(y, t, dt, rec);
+  }
+
+  // sum_j e_j Theta_j of the stacked stages Theta.
+  Vector stage_sum(const Eigen::VectorXd& thetas) const {
+    const int q = group_.dim();
+    Vector sum = zero_vector(group_);
+    for (int j = 0; j < tab_->stages(); ++j) sum += weights_->e(j) * Vector(thetas.segment(j * q, q));
+    return sum;
+  }
+  // err = (I - h gamma0 J)^-1 (h gamma0 g + sum_j e_j Theta_j).
+  Vector filtered(const Vector& g, double dt) const {
+    return Vector(matrix_->filter(Eigen::VectorXd((dt * weights_->gamma0) * g + last_.stages)));
+  }
+
+  // J is evaluated again after a solve whose corrections shrank by less than this factor each.
+  static constexpr double kReuseContraction = 0.1;
   G group_;
   VectorField<G>* field_;
   const Tableau* tab_;
@@ -130,6 +214,19 @@ class Stepper {
   // through a later point too: adaptive steps take the whole step after its two halves).
   std::optional<std::pair<double, Vector>> previous_;
   std::string failure_;
+  // Implicit RKMK methods: the decoupled Newton matrix (also the estimate's filter), its J and whether it may be
+  // kept, and the embedded estimate's weights and last step.
+  std::optional<DecoupledNewtonMatrix> matrix_;
+  std::optional<Eigen::MatrixXd> jacobian_;
+  bool jacobian_fresh_ = false, reuse_jacobian_ = false;
+  std::optional<EmbeddedWeights> weights_;
+  bool want_estimate_ = false;
+  struct LastStep {
+    Element y;
+    double t = 0, h = 0;
+    Vector stages;  // sum_j e_j Theta_j
+    Vector error;
+  } last_;
 };
 
 }  // namespace lienewton::integrators
