@@ -32,8 +32,8 @@ class VectorField {
   virtual Vector g(const Element& y) const = 0;
   virtual Vector dg(const Element& y, const Vector& u) const = 0;
   // The time t at which g(t, y) is evaluated from now on. Integrators set it before each stage (t_k + c_i h);
-  // solves leave it at 0. Built-in problems are autonomous and ignore it. A field belongs to one request, so
-  // setting it is never shared between threads.
+  // solves leave it at 0. The built-in problems but stiff-body (its forcing f(t)) are autonomous and ignore it. A
+  // field belongs to one request, so setting it is never shared between threads.
   virtual void set_time(double /*t*/) {}
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
