@@ -154,7 +154,7 @@ std::vector<Field> build() {
                      .description = "R(0), a 3 x 3 rotation (orthogonal to 1e-10, det +1; default the identity)"};
   const StiffBodyParams stiff;
   Field stiff_k{.name = "k", .type = Type::number, .lands = {&StiffBodyParams::k},
-                .description = "spring stiffness (the stiffness: the damper's eigenvalues are about -c/J_i)",
+                .description = "spring constant (with c = k the damper's eigenvalues are about -k/J_i: the stiffness)",
                 .exclusive_minimum = true, .schema_minimum = 0.0, .schema_maximum = StiffBodyParams::kBound,
                 .default_value = stiff.k};
   Field stiff_c{.name = "c", .type = Type::number, .lands = {&StiffBodyParams::c},

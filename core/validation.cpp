@@ -82,7 +82,8 @@ void check_heavy_top(const ProblemSpec& problem) {
   const HeavyTopParams& p = problem.heavy_top;
   constexpr double bound = HeavyTopParams::kBound;
   if (!(p.mass > 0.0 && p.mass <= bound))
-    unprocessable("heavy_top.mass", "heavy_top.mass must be a finite number in (0, " + fields::format_bound(bound) + "]");
+    unprocessable("heavy_top.mass",
+                  "heavy_top.mass must be a finite number in (0, " + fields::format_bound(bound) + "]");
   check_moments(p.inertia, bound, "heavy_top.inertia");
   using Named = std::pair<const char*, const Eigen::Vector3d*>;
   for (const auto& [name, v] : {Named{"center", &p.center}, Named{"gravity", &p.gravity}, Named{"omega", &p.omega}})
