@@ -107,6 +107,19 @@ Field array(Field item, std::size_t min_items, std::size_t max_items, std::strin
 
 std::string text(int x) { return std::to_string(x); }
 
+// Three numbers of a problem's parameters P (heavy-top's, stiff-body's): the codec reads finite numbers, core
+// validation refuses the rest with 422 (the schema's bounds, P::kBound).
+template <class P>
+Field three_numbers(const char* name, Eigen::Vector3d P::*member, const std::string& description, bool positive) {
+  Field f{.name = name, .type = Type::number, .lands = {member}, .description = description,
+          .exclusive_minimum = positive, .schema_minimum = positive ? 0.0 : -P::kBound, .schema_maximum = P::kBound};
+  f = array(f, 3, 3, "3 finite numbers");
+  const Eigen::Vector3d value = P{}.*member;
+  f.description += " (default [" + format_bound(value.x()) + ", " + format_bound(value.y()) + ", " +
+                   format_bound(value.z()) + "])";
+  return f;
+}
+
 std::vector<Field> build() {
   const std::string method_text = "solver: fixed-point (1.2), newton-group = Version 1, newton-algebra = Version 2";
   const std::string differential_text = "how the Newton differential is formed";
@@ -133,24 +146,23 @@ std::vector<Field> build() {
   Field momentum{.name = "momentum", .type = Type::number, .lands = {&RigidBodyParams::momentum},
                  .description = "spatial angular momentum"};
   momentum = array(momentum, 3, 3, "3 finite numbers");
-  // heavy-top's parameters: the codec reads finite numbers, core validation refuses the rest with 422 (the
-  // schema's bounds).
-  const auto top_vector = [](const char* name, Eigen::Vector3d HeavyTopParams::*member, const char* description,
-                             const Eigen::Vector3d& value, bool positive) {
-    Field f{.name = name, .type = Type::number, .lands = {member}, .description = description,
-            .exclusive_minimum = positive, .schema_minimum = positive ? 0.0 : -HeavyTopParams::kBound,
-            .schema_maximum = HeavyTopParams::kBound};
-    f = array(f, 3, 3, "3 finite numbers");
-    f.description += " (default [" + format_bound(value.x()) + ", " + format_bound(value.y()) + ", " +
-                     format_bound(value.z()) + "])";
-    return f;
-  };
   const HeavyTopParams top;
   Field top_mass{.name = "mass", .type = Type::number, .lands = {&HeavyTopParams::mass}, .description = "m",
                  .exclusive_minimum = true, .schema_minimum = 0.0, .schema_maximum = HeavyTopParams::kBound,
                  .default_value = top.mass};
   Field top_rotation{.name = "rotation", .type = Type::matrix, .lands = {&HeavyTopParams::rotation},
                      .description = "R(0), a 3 x 3 rotation (orthogonal to 1e-10, det +1; default the identity)"};
+  const StiffBodyParams stiff;
+  Field stiff_k{.name = "k", .type = Type::number, .lands = {&StiffBodyParams::k},
+                .description = "spring constant (with c = k the damper's eigenvalues are about -k/J_i: the stiffness)",
+                .exclusive_minimum = true, .schema_minimum = 0.0, .schema_maximum = StiffBodyParams::kBound,
+                .default_value = stiff.k};
+  Field stiff_c{.name = "c", .type = Type::number, .lands = {&StiffBodyParams::c},
+                .description = "damping (default k)", .schema_minimum = 0.0,
+                .schema_maximum = StiffBodyParams::kBound};
+  Field stiff_rotation{.name = "rotation", .type = Type::matrix, .lands = {&StiffBodyParams::rotation},
+                       .description = "R(0), a 3 x 3 rotation (orthogonal to 1e-10, det +1; default "
+                                      "exp(hat([0.5, -0.3, 0.8])))"};
   Field seed{.name = "seed", .type = Type::integer, .routes = kProblemRoutes, .lands = {&ProblemSpec::seed},
              .description = "unsigned 64-bit seed of the random start point", .minimum = 0.0,
              .maximum = static_cast<double>(std::numeric_limits<std::uint64_t>::max()), .default_value = 1LL};
@@ -185,8 +197,8 @@ std::vector<Field> build() {
                                    "(w, r), rotation vector first; SOxR: SO(3) x R^3 (n = 3), z the 7 x 7 block "
                                    "diagonal [[R, 0], [0, [[I, w], [0, 1]]]], coordinates (rotation vector, w); SExR: "
                                    "SE(3) x R^6 (n = 3), z the 11 x 11 [[T, 0], [0, [[I, v], [0, 1]]]], coordinates "
-                                   "(w, r, v). The built-in problems are defined on SO, heavy-top on SOxR; g (your own "
-                                   "field) on every group",
+                                   "(w, r, v). The built-in problems are defined on SO, heavy-top and stiff-body on "
+                                   "SOxR; g (your own field) on every group",
                     .values = registered_group_names(), .default_value = std::string("SO")});
   t.push_back(integer(n, solve | integrate | work_precision, {&ProblemSpec::n}, Cap::n));
   t.push_back(basin_n);
@@ -201,17 +213,28 @@ std::vector<Field> build() {
                                    "replace z; absent ones keep their defaults",
                     .schema = "HeavyTop",
                     .properties = {top_mass,
-                                   top_vector("inertia", &HeavyTopParams::inertia,
-                                              "J_c: principal moments about the centre of mass (positive); the "
-                                              "equation takes the pivot's J_c + m(|chi|^2 I - chi chi^T)",
-                                              top.inertia, true),
-                                   top_vector("center", &HeavyTopParams::center, "chi: the centre of mass in the body",
-                                              top.center, false),
-                                   top_vector("gravity", &HeavyTopParams::gravity, "gamma: gravity in space",
-                                              top.gravity, false),
+                                   three_numbers("inertia", &HeavyTopParams::inertia,
+                                                 "J_c: principal moments about the centre of mass (positive); the "
+                                                 "equation takes the pivot's J_c + m(|chi|^2 I - chi chi^T)",
+                                                 true),
+                                   three_numbers("center", &HeavyTopParams::center,
+                                                 "chi: the centre of mass in the body", false),
+                                   three_numbers("gravity", &HeavyTopParams::gravity, "gamma: gravity in space", false),
                                    top_rotation,
-                                   top_vector("omega", &HeavyTopParams::omega, "omega(0): body angular velocity",
-                                              top.omega, false)}});
+                                   three_numbers("omega", &HeavyTopParams::omega, "omega(0): body angular velocity",
+                                                 false)}});
+  t.push_back(Field{.name = "stiff_body", .type = Type::object, .routes = kProblemRoutes,
+                    .lands = {&ProblemSpec::stiff_body},
+                    .description = "stiff-body only: the body's spring, damper, inertia and forcing, and its start "
+                                   "(R(0), omega(0)), which replace z; absent ones keep their defaults",
+                    .schema = "StiffBody",
+                    .properties = {stiff_k, stiff_c,
+                                   three_numbers("J", &StiffBodyParams::J, "principal moments (positive)", true),
+                                   three_numbers("f", &StiffBodyParams::f,
+                                                 "forcing amplitudes: f(t) = (f1 sin 2t, f2 cos t, f3)", false),
+                                   stiff_rotation,
+                                   three_numbers("omega", &StiffBodyParams::omega, "omega(0): body angular velocity",
+                                                 false)}});
   t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text));
   t.push_back(enumeration("differential", kAllDifferentials, solve | sweep | integrate | basins,
                           {&SolverOptions::differential}, differential_text));

@@ -19,6 +19,7 @@
 #include "heavy_top_params.hpp"
 #include "rigid_body_params.hpp"
 #include "shard.hpp"
+#include "stiff_body_params.hpp"
 #include "user_field/program.hpp"
 
 namespace lienewton {
@@ -135,7 +136,9 @@ using Member = std::variant<
     std::vector<Method> BasinRequest::*, int BasinRequest::*, std::optional<double> BasinRequest::*,
     std::optional<Eigen::VectorXd> BasinRequest::*, std::optional<Shard> BasinRequest::*,
     Eigen::Vector3d RigidBodyParams::*, int Shard::*, HeavyTopParams ProblemSpec::*, double HeavyTopParams::*,
-    Eigen::Vector3d HeavyTopParams::*, Eigen::Matrix3d HeavyTopParams::*>;
+    Eigen::Vector3d HeavyTopParams::*, Eigen::Matrix3d HeavyTopParams::*, StiffBodyParams ProblemSpec::*,
+    double StiffBodyParams::*, std::optional<double> StiffBodyParams::*, Eigen::Vector3d StiffBodyParams::*,
+    Eigen::Matrix3d StiffBodyParams::*>;
 
 using Default = std::variant<std::monostate, double, long long, bool, std::string>;
 
@@ -159,7 +162,7 @@ struct Field {
   std::size_t min_items = 0, max_items = 0;
   Cap cap_items = Cap::none;
   std::string items{};
-  std::string schema{};                         // object: the named schema it is published as (RigidBody, HeavyTop)
+  std::string schema{};                         // object: the named schema it is published as (RigidBody, HeavyTop, StiffBody)
   std::vector<Field> properties{};              // object: its fields
   std::vector<std::string> required{};          // object: the fields it needs
 

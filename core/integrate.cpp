@@ -13,8 +13,6 @@
 namespace lienewton {
 namespace {
 
-constexpr double kMaxSteps = 1e5;
-
 // The solver options an integrator's steps do not use are refused rather than ignored. A DIRK method solves each
 // stage as an equation of (1.1) by run_method, which takes them all; an implicit RKMK method solves its coupled
 // stage system by its own Newton (dense LU, stopping on h ||F||, rkmk_stages.hpp); an explicit one solves nothing.
@@ -46,7 +44,7 @@ void resolve_defaults(IntegrateRequest& req) {
   if (req.h) return;
   validate(req.problem);
   validation::check(fields::t_end, req.t_end, "t_end");
-  req.h = default_step(req.problem, req.t_end, kMaxSteps);
+  req.h = default_step(req.problem, req.t_end, kMaxRunSteps);
 }
 
 void validate(const IntegrateRequest& req) {
@@ -56,7 +54,7 @@ void validate(const IntegrateRequest& req) {
   validation::check(fields::h, h, "h");
   validation::check(fields::t_end, req.t_end, "t_end");
   if (h > req.t_end) validation::invalid("h", "h must not exceed t_end");
-  if (req.t_end / h > kMaxSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
+  if (req.t_end / h > kMaxRunSteps) validation::invalid("h", "t_end / h must be at most 1e5 steps");
   if (req.rtol) validation::check_tolerance(fields::rtol, *req.rtol, "rtol");
   if (req.atol) validation::check_tolerance(fields::atol, *req.atol, "atol");
   validation::check(fields::max_steps, req.max_steps, "max_steps");

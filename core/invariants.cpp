@@ -18,7 +18,8 @@ std::span<const Invariant> invariants_of(ProblemKind kind) {
     case ProblemKind::rigid_body: return kEnergy;
     case ProblemKind::heavy_top: return kAllInvariants;
     case ProblemKind::paper_linear:
-    case ProblemKind::paper_sine: break;
+    case ProblemKind::paper_sine:
+    case ProblemKind::stiff_body: break;  // forced and damped: nothing is conserved
   }
   return {};
 }
@@ -33,7 +34,7 @@ InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd&
     const HeavyTop top{problem.heavy_top};
     out[Invariant::energy] = top.energy(y);
     out[Invariant::vertical_momentum] = top.vertical_momentum(y);
-    if (const auto k = top.symmetry_axis()) out[Invariant::axial_spin] = HeavyTop::omega(y)(*k);
+    if (const auto k = top.symmetry_axis()) out[Invariant::axial_spin] = so3xr3::omega(y)(*k);
   }
   return out;
 }
@@ -46,7 +47,7 @@ InvariantValues invariant_scales(const ProblemSpec& problem, const Eigen::Matrix
     const HeavyTop top{problem.heavy_top};
     out[Invariant::energy] = top.energy_scale(y);
     out[Invariant::vertical_momentum] = top.momentum_scale(y);
-    if (out[Invariant::axial_spin]) out[Invariant::axial_spin] = HeavyTop::omega(y).norm();
+    if (out[Invariant::axial_spin]) out[Invariant::axial_spin] = so3xr3::omega(y).norm();
   }
   return out;
 }

@@ -23,7 +23,7 @@ struct InvariantValues {
 };
 
 // The invariants a built-in problem reports: rigid-body its energy; heavy-top its energy, vertical angular
-// momentum and (a Lagrange top) its axial spin; the paper's problems none (nor does a user's g).
+// momentum and (a Lagrange top) its axial spin; the paper's problems and stiff-body none (nor does a user's g).
 std::span<const Invariant> invariants_of(ProblemKind kind);
 bool has_invariants(const ProblemSpec& problem);
 InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd& y);

@@ -11,6 +11,7 @@
 #include "program_cache.hpp"
 #include "rigid_body_params.hpp"
 #include "spec_cache.hpp"
+#include "stiff_body_params.hpp"
 #include "user_field/program.hpp"
 
 namespace lienewton {
@@ -20,11 +21,12 @@ struct ProblemSpec {
   std::string group = "SO";  // the Lie group by its registered name; n is its index, as in SO(n)
   int n = 3;
   std::uint64_t seed = 1;
-  // start point; when absent, the group's random element from seed (heavy-top: its state of heavy_top's
-  // rotation and omega, which give its start instead of z)
+  // start point; when absent, the group's random element from seed (heavy-top, stiff-body: the state of their
+  // parameters' rotation and omega, which give their start instead of z)
   std::optional<Eigen::MatrixXd> z{};
   RigidBodyParams rigid_body{};
   HeavyTopParams heavy_top{};
+  StiffBodyParams stiff_body{};
   // The user's own field g(y) as a program (user_field/program.hpp), used instead of kind; the named numbers and
   // matrices it reads.
   std::optional<std::string> g{};
@@ -45,7 +47,7 @@ struct ProblemSpec {
   // The family `group` names (from `resolved`); throws RequestError naming group when none is registered.
   const GroupFamily& family() const { return resolved->family(group); }
 
-  // z, or heavy-top's start, or the seeded random start point when z is absent.
+  // z, or heavy-top's or stiff-body's start, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;
 };
 

@@ -5,6 +5,7 @@
 // Each is written once on matrices; VectorFieldOf adapts it to a group's coordinates. A problem may add
 // dg_matrix(group, y) for the groups whose basis it knows; the others assemble dg's matrix column by column.
 #include <Eigen/Dense>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,8 @@
 #include "heavy_top_params.hpp"
 #include "options.hpp"
 #include "rigid_body_params.hpp"
+#include "so3xr3_state.hpp"
+#include "stiff_body_params.hpp"
 
 namespace lienewton {
 
@@ -29,8 +32,8 @@ class VectorField {
   virtual Vector g(const Element& y) const = 0;
   virtual Vector dg(const Element& y, const Vector& u) const = 0;
   // The time t at which g(t, y) is evaluated from now on. Integrators set it before each stage (t_k + c_i h);
-  // solves leave it at 0. Built-in problems are autonomous and ignore it. A field belongs to one request, so
-  // setting it is never shared between threads.
+  // solves leave it at 0. The built-in problems but stiff-body (its forcing f(t)) are autonomous and ignore it. A
+  // field belongs to one request, so setting it is never shared between threads.
   virtual void set_time(double /*t*/) {}
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
@@ -141,7 +144,7 @@ struct RigidBody {
 };
 
 // The heavy top on SO(3) x R^3 (heavy_top_params.hpp), its state the 7 x 7 block-diagonal
-// y = [[R, 0], [0, [[I, w], [0, 1]]]] of SO3xR3Group: y' = y g(y) with
+// y = [[R, 0], [0, [[I, w], [0, 1]]]] of SO3xR3Group (so3xr3_state.hpp): y' = y g(y) with
 //   g(y) = [[hat(w), 0], [0, [[0, a], [0, 0]]]],  a = J^-1 ((J w) x w + m chi x (R^T gamma)),
 // i.e. R' = R hat(w), w' = a, J the inertia about the pivot. Its energy 1/2 w^T J w - m gamma^T R chi is conserved,
 // so is the vertical angular momentum e3^T R J w when gamma is vertical, and for a Lagrange top (chi on a principal
@@ -156,22 +159,22 @@ struct HeavyTop {
 
   template <class M>
   M g(const M& y) const {
-    const Eigen::Vector3d w = omega(y);
-    return embed<M>(w, acceleration(rotation(y), w));
+    const Eigen::Vector3d w = so3xr3::omega(y);
+    return so3xr3::embed<M>(w, acceleration(so3xr3::rotation(y), w));
   }
   // Along y' = y dir, dir = hat(u_r, u_w): R' = R hat(u_r), w' = u_w, so (R^T gamma)' = -hat(u_r) R^T gamma
   // = (R^T gamma) x u_r, and a' = J^-1 ((J u_w) x w + (J w) x u_w + m chi x ((R^T gamma) x u_r)).
   template <class M>
   M dg(const M& y, const M& dir, const M&) const {
-    const Eigen::Vector3d w = omega(y), u_r = so3::vee(rotation(dir)), u_w = omega(dir);
-    const Eigen::Vector3d b = rotation(y).transpose() * params.gravity;
+    const Eigen::Vector3d w = so3xr3::omega(y), u_r = so3::vee(so3xr3::rotation(dir)), u_w = so3xr3::omega(dir);
+    const Eigen::Vector3d b = so3xr3::rotation(y).transpose() * params.gravity;
     const Eigen::Vector3d da = (inertia * u_w).cross(w) + (inertia * w).cross(u_w) +
                                params.mass * params.center.cross(b.cross(u_r));
-    return embed<M>(u_w, inverse * da);
+    return so3xr3::embed<M>(u_w, inverse * da);
   }
   // The same on the coordinates (u_r, u_w): [[0, I], [J^-1 m hat(chi) hat(b), J^-1 (hat(J w) - hat(w) J)]].
   SO3xR3Group::Operator dg_matrix(const SO3xR3Group&, const SO3xR3Group::Element& y) const {
-    const Eigen::Vector3d w = omega(y), b = rotation(y).transpose() * params.gravity;
+    const Eigen::Vector3d w = so3xr3::omega(y), b = so3xr3::rotation(y).transpose() * params.gravity;
     SO3xR3Group::Operator m = SO3xR3Group::Operator::Zero();
     m.topRightCorner<3, 3>().setIdentity();
     m.bottomLeftCorner<3, 3>() = inverse * (params.mass * so3::hat(params.center) * so3::hat(b));
@@ -180,12 +183,12 @@ struct HeavyTop {
   }
   template <class M>
   double energy(const M& y) const {
-    const Eigen::Vector3d w = omega(y);
-    return 0.5 * w.dot(inertia * w) - params.mass * params.gravity.dot(rotation(y) * params.center);
+    const Eigen::Vector3d w = so3xr3::omega(y);
+    return 0.5 * w.dot(inertia * w) - params.mass * params.gravity.dot(so3xr3::rotation(y) * params.center);
   }
   template <class M>
   double vertical_momentum(const M& y) const {
-    return (rotation(y) * (inertia * omega(y))).z();
+    return (so3xr3::rotation(y) * (inertia * so3xr3::omega(y))).z();
   }
   // The Lagrange top's symmetry axis k: chi along body axis k alone, the two other moments equal. None otherwise.
   std::optional<int> symmetry_axis() const {
@@ -201,35 +204,70 @@ struct HeavyTop {
   // the angular momentum J w (of which the vertical momentum is one component), and |w|.
   template <class M>
   double energy_scale(const M& y) const {
-    const Eigen::Vector3d w = omega(y);
+    const Eigen::Vector3d w = so3xr3::omega(y);
     return 0.5 * w.dot(inertia * w) + params.mass * params.gravity.norm() * params.center.norm();
   }
   template <class M>
-  double momentum_scale(const M& y) const { return (inertia * omega(y)).norm(); }
-  template <class M>
-  static Eigen::Vector3d omega(const M& y) { return y.template block<3, 1>(3, 6); }
+  double momentum_scale(const M& y) const { return (inertia * so3xr3::omega(y)).norm(); }
   // y(0): the state of (R(0), w(0)).
-  Eigen::MatrixXd start() const {
-    Eigen::MatrixXd y = Eigen::MatrixXd::Identity(7, 7);
-    y.topLeftCorner<3, 3>() = params.rotation;
-    y.block<3, 1>(3, 6) = params.omega;
-    return y;
-  }
+  Eigen::MatrixXd start() const { return so3xr3::state(params.rotation, params.omega); }
 
  private:
   Eigen::Vector3d acceleration(const Eigen::Matrix3d& r, const Eigen::Vector3d& w) const {
     const Eigen::Vector3d torque = params.mass * params.center.cross(r.transpose() * params.gravity);
     return inverse * ((inertia * w).cross(w) + torque);
   }
+};
+
+// The stiff rigid body on SO(3) x R^3 (stiff_body_params.hpp) in the heavy top's state layout: y' = y g(t, y) with
+//   g(t, y) = [[hat(w), 0], [0, [[0, a], [0, 0]]]],  a = J^-1 ((J w) x w - k vee(skew R) - c w + f(t)).
+// Forced and damped, it conserves nothing. f(t) is added to g alone, so dg does not depend on t.
+struct StiffBody {
+  StiffBodyParams params;
+  double time = 0.0;  // the t of f(t): the integrators' stage time (VectorFieldOf::set_time), 0 in solves
+
+  explicit StiffBody(const StiffBodyParams& p) : params(p) {}
+
+  void set_time(double t) { time = t; }
   template <class M>
-  static Eigen::Matrix3d rotation(const M& y) { return y.template topLeftCorner<3, 3>(); }
-  // [[hat(w), 0], [0, [[0, a], [0, 0]]]]: the algebra element of (w, a).
+  M g(const M& y) const {
+    const Eigen::Vector3d w = so3xr3::omega(y), r = spring(so3xr3::rotation(y));
+    const Eigen::Vector3d torque = momentum(w).cross(w) - params.k * r - damping(params) * w + forcing();
+    return so3xr3::embed<M>(w, torque.cwiseQuotient(params.J));
+  }
+  // Along y' = y dir, dir = hat(u_r, u_w): R' = R hat(u_r), w' = u_w, and vee(skew(R hat(u))) = P u with
+  // P = (tr(R) I - R^T) / 2, so a' = J^-1 ((J u_w) x w + (J w) x u_w - k P u_r - c u_w).
   template <class M>
-  static M embed(const Eigen::Vector3d& w, const Eigen::Vector3d& a) {
-    M out = M::Zero(7, 7);
-    out.template topLeftCorner<3, 3>() = so3::hat(w);
-    out.template block<3, 1>(3, 6) = a;
-    return out;
+  M dg(const M& y, const M& dir, const M&) const {
+    const Eigen::Vector3d w = so3xr3::omega(y), u_r = so3::vee(so3xr3::rotation(dir)), u_w = so3xr3::omega(dir);
+    const Eigen::Vector3d da = momentum(u_w).cross(w) + momentum(w).cross(u_w) -
+                               params.k * (spring_slope(so3xr3::rotation(y)) * u_r) - damping(params) * u_w;
+    return so3xr3::embed<M>(u_w, da.cwiseQuotient(params.J));
+  }
+  // The same on the coordinates (u_r, u_w): [[0, I], [-J^-1 k P, J^-1 (hat(J w) - hat(w) J - c I)]].
+  SO3xR3Group::Operator dg_matrix(const SO3xR3Group&, const SO3xR3Group::Element& y) const {
+    const Eigen::Vector3d w = so3xr3::omega(y);
+    const Eigen::Matrix3d inertia = params.J.asDiagonal();
+    const Eigen::Vector3d inverse = params.J.cwiseInverse();
+    SO3xR3Group::Operator m = SO3xR3Group::Operator::Zero();
+    m.topRightCorner<3, 3>().setIdentity();
+    m.bottomLeftCorner<3, 3>() = inverse.asDiagonal() * (-params.k * spring_slope(so3xr3::rotation(y)));
+    m.bottomRightCorner<3, 3>() = inverse.asDiagonal() * (so3::hat(inertia * w) - so3::hat(w) * inertia -
+                                                          damping(params) * Eigen::Matrix3d::Identity());
+    return m;
+  }
+  // y(0): the state of (R(0), w(0)).
+  Eigen::MatrixXd start() const { return so3xr3::state(params.rotation, params.omega); }
+
+ private:
+  Eigen::Vector3d momentum(const Eigen::Vector3d& w) const { return params.J.cwiseProduct(w); }
+  // vee(skew R): the spring's twist away from the identity (sin of the angle about R's axis).
+  static Eigen::Vector3d spring(const Eigen::Matrix3d& r) { return so3::vee(0.5 * (r - r.transpose())); }
+  static Eigen::Matrix3d spring_slope(const Eigen::Matrix3d& r) {
+    return 0.5 * (r.trace() * Eigen::Matrix3d::Identity() - r.transpose());
+  }
+  Eigen::Vector3d forcing() const {
+    return params.f.cwiseProduct(Eigen::Vector3d(std::sin(2.0 * time), std::cos(time), 1.0));
   }
 };
 
@@ -251,6 +289,10 @@ class VectorFieldOf final : public VectorField<G> {
       return VectorField<G>::dg_matrix(group, y);
     }
   }
+  // A time-dependent problem (one with set_time) sees the stage time; the autonomous ones have nothing to set.
+  void set_time(double t) override {
+    if constexpr (requires { problem_.set_time(t); }) problem_.set_time(t);
+  }
   const Problem& problem() const { return problem_; }
 
  private:
@@ -260,8 +302,8 @@ class VectorFieldOf final : public VectorField<G> {
 
 // The groups each problem is defined on (validate() checks before make_field). The paper's problems are matrix
 // formulas with skew values: defined on every group of n x n matrices whose algebra holds the skew matrices
-// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone; heavy-top's the
-// 7 x 7 states of SO(3) x R^3.
+// (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone; heavy-top's and
+// stiff-body's the 7 x 7 states of SO(3) x R^3.
 template <class G>
 bool algebra_holds_skew_matrices(const G& group) {
   Eigen::MatrixXd s = group.matrix(group.identity());
@@ -274,27 +316,31 @@ bool algebra_holds_skew_matrices(const G& group) {
 template <class G>
 inline constexpr bool kTakesRigidBody =
     G::Element::RowsAtCompileTime == 3 || G::Element::RowsAtCompileTime == Eigen::Dynamic;
+// The problems written on SO(3) x R^3 (so3xr3_state.hpp): their parameters give their start (R(0), w(0)), never z.
+inline bool on_so3xr3(ProblemKind kind) {
+  return kind == ProblemKind::heavy_top || kind == ProblemKind::stiff_body;
+}
 template <class G>
 bool defined_on(ProblemKind kind, const G& group) {
   if (kind == ProblemKind::rigid_body) return std::is_same_v<G, SO3Group>;
-  if (kind == ProblemKind::heavy_top) return std::is_same_v<G, SO3xR3Group>;
+  if (on_so3xr3(kind)) return std::is_same_v<G, SO3xR3Group>;
   return algebra_holds_skew_matrices(group);
 }
-// The one n a problem is written for, if any: rigid-body's and heavy-top's 3 (their group's index).
+// The one n a problem is written for, if any: rigid-body's, heavy-top's and stiff-body's 3 (their group's index).
 inline std::optional<int> required_index(ProblemKind kind) {
-  if (kind == ProblemKind::rigid_body || kind == ProblemKind::heavy_top) return 3;
+  if (kind == ProblemKind::rigid_body || on_so3xr3(kind)) return 3;
   return std::nullopt;
 }
-// The one group family a problem is written for, if any: heavy-top's SO(3) x R^3.
+// The one group family a problem is written for, if any: heavy-top's and stiff-body's SO(3) x R^3.
 inline std::optional<std::string> required_group(ProblemKind kind) {
-  if (kind == ProblemKind::heavy_top) return SOxRFamily::kName;
+  if (on_so3xr3(kind)) return SOxRFamily::kName;
   return std::nullopt;
 }
 
 // The field of a request's problem on group G (one it is defined_on; validate() checks).
 template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb,
-                                           const HeavyTopParams& top = {}) {
+                                           const HeavyTopParams& top = {}, const StiffBodyParams& stiff = {}) {
   switch (kind) {
     case ProblemKind::paper_linear: return std::make_unique<VectorFieldOf<G, PaperLinear>>(group, PaperLinear{});
     case ProblemKind::paper_sine: return std::make_unique<VectorFieldOf<G, PaperSine>>(group, PaperSine{});
@@ -304,6 +350,10 @@ std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, con
     case ProblemKind::heavy_top:
       if constexpr (std::is_same_v<G, SO3xR3Group>)
         return std::make_unique<VectorFieldOf<G, HeavyTop>>(group, HeavyTop{top});
+      break;
+    case ProblemKind::stiff_body:
+      if constexpr (std::is_same_v<G, SO3xR3Group>)
+        return std::make_unique<VectorFieldOf<G, StiffBody>>(group, StiffBody{stiff});
       break;
   }
   return nullptr;

@@ -24,7 +24,7 @@ std::vector<int> paper_dimensions() {
   for (int i = 2; i <= 15; ++i) n.push_back(i);
   return n;
 }
-// The paper's N, or the one n the problem (rigid-body, heavy-top) or its group (SE(3), SO(3) x R^3) is written
+// The paper's N, or the one n the problem (rigid-body, heavy-top, stiff-body) or its group (SE(3), SO(3) x R^3) is written
 // for: there the map sweeps h alone.
 std::vector<int> default_dimensions(const ProblemSpec& problem) {
   std::optional<int> only = problem.family().only_index();
@@ -145,8 +145,8 @@ SweepResult sweep_validated(const SweepRequest& request, const CellCallback& on_
   std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
   for (int n : req.n) {
     problems.push_back(at_dimension(req.problem, n));
-    // heavy-top's start is its parameters' state, which it refuses to be given again as z.
-    if (!problems.back().is(ProblemKind::heavy_top)) problems.back().z = problems.back().start();
+    // heavy-top's and stiff-body's start is their parameters' state, which they refuse to be given again as z.
+    if (problems.back().g || !on_so3xr3(problems.back().kind)) problems.back().z = problems.back().start();
   }
 
   const std::size_t per_method = req.n.size() * req.h.size();

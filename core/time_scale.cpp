@@ -17,6 +17,8 @@ std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end)
   // A field that does not move (rate 0) or overflows at its start has no scale: the slow problems' steps.
   int e = std::ilogb(kMaxDefaultStep);
   if (std::isfinite(rate) && rate > 0.0) e = std::min(e, static_cast<int>(std::floor(-std::log2(rate))));
+  // The finest of the kMinDefaultStepCount steps within one integration's limit.
+  e = std::max(e, static_cast<int>(std::ceil(std::log2(t_end / kMaxRunSteps))) + kMinDefaultStepCount - 1);
   e = std::max(e, std::numeric_limits<double>::min_exponent + kDefaultStepCount);
   std::vector<double> h;
   for (int k = 0; k < kDefaultStepCount; ++k) {

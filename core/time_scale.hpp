@@ -15,11 +15,14 @@ double field_rate(const ProblemSpec& problem);
 
 // Step sizes halving from the largest power of two h <= kMaxDefaultStep with h rho <= 1: kDefaultStepCount of them,
 // fewer where a run to t_end would take more than kMaxDefaultRunSteps steps (the heavy top: 2^-10 ... 2^-13, so that
-// every integrator's runs fit a server's step budget), never fewer than kMinDefaultStepCount.
+// every integrator's runs fit a server's step budget), never fewer than kMinDefaultStepCount. Where those would
+// take more than kMaxRunSteps, the limit of one integration, they start that much higher instead (the stiff body,
+// rho ~ 2e4 from its damper: 2^-14 ... 2^-16 at t_end = 1, h rho up to 1.1).
 inline constexpr int kDefaultStepCount = 6;
 inline constexpr int kMinDefaultStepCount = 3;
 inline constexpr double kMaxDefaultRunSteps = 8192;
 inline constexpr double kMaxDefaultStep = 0.25;
+inline constexpr double kMaxRunSteps = 1e5;
 std::vector<double> default_step_sizes(const ProblemSpec& problem, double t_end);
 
 // The default step of one integration to t_end: kDefaultIntegrationStep where that is inside the asymptotic regime

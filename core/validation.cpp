@@ -45,27 +45,66 @@ void check_rigid_body(const RigidBodyParams& p) {
   if (!p.momentum.allFinite()) invalid("rigid_body.momentum", "rigid_body.momentum must be three finite numbers");
 }
 
+namespace {
+
+// Each entry finite and at most bound in size.
+bool bounded(const Eigen::Vector3d& x, double bound) { return x.allFinite() && x.cwiseAbs().maxCoeff() <= bound; }
+
+// A parameter that must be three finite numbers within bound (422 naming path).
+void check_vector(const Eigen::Vector3d& x, double bound, const std::string& path) {
+  if (!bounded(x, bound))
+    unprocessable(path, path + " must be three finite numbers, at most " + fields::format_bound(bound) + " in size");
+}
+
+// A parameter that must be three positive numbers within bound (principal moments).
+void check_moments(const Eigen::Vector3d& x, double bound, const std::string& path) {
+  if (!bounded(x, bound) || (x.array() <= 0.0).any())
+    unprocessable(path, path + " must be three positive numbers, at most " + fields::format_bound(bound));
+}
+
+// R(0) of a problem on SO(3) x R^3: a rotation of finite numbers, orthogonal to SO's tolerance, det +1.
+void check_rotation(const Eigen::Matrix3d& r, const std::string& path) {
+  if (!r.allFinite()) unprocessable(path, path + " must be a 3 x 3 rotation of finite numbers");
+  if (std::string why = group_family("SO").not_an_element(3, r, path); !why.empty()) unprocessable(path, why);
+  if (r.determinant() < 0.0) unprocessable(path, path + " must be a rotation (det +1), not a reflection");
+}
+
+// The problem's start is its parameters' (R(0), w(0)): a z as well is refused.
+void refuse_z(const ProblemSpec& problem, ProblemKind kind, const std::string& params) {
+  if (problem.is(kind) && problem.z)
+    unprocessable("z", std::string(to_string(kind)) + " starts at " + params + ".rotation and " + params +
+                           ".omega: give those instead of z");
+}
+
+}  // namespace
+
 void check_heavy_top(const ProblemSpec& problem) {
   const HeavyTopParams& p = problem.heavy_top;
-  const auto bounded = [](const auto& x) { return x.allFinite() && x.cwiseAbs().maxCoeff() <= HeavyTopParams::kBound; };
-  const std::string bound = fields::format_bound(HeavyTopParams::kBound);
-  if (!(p.mass > 0.0 && p.mass <= HeavyTopParams::kBound))
-    unprocessable("heavy_top.mass", "heavy_top.mass must be a finite number in (0, " + bound + "]");
-  if (!bounded(p.inertia) || (p.inertia.array() <= 0.0).any())
-    unprocessable("heavy_top.inertia", "heavy_top.inertia must be three positive numbers, at most " + bound);
+  constexpr double bound = HeavyTopParams::kBound;
+  if (!(p.mass > 0.0 && p.mass <= bound))
+    unprocessable("heavy_top.mass",
+                  "heavy_top.mass must be a finite number in (0, " + fields::format_bound(bound) + "]");
+  check_moments(p.inertia, bound, "heavy_top.inertia");
   using Named = std::pair<const char*, const Eigen::Vector3d*>;
   for (const auto& [name, v] : {Named{"center", &p.center}, Named{"gravity", &p.gravity}, Named{"omega", &p.omega}})
-    if (!bounded(*v))
-      unprocessable(std::string("heavy_top.") + name,
-                    std::string("heavy_top.") + name + " must be three finite numbers, at most " + bound + " in size");
-  if (!p.rotation.allFinite())
-    unprocessable("heavy_top.rotation", "heavy_top.rotation must be a 3 x 3 rotation of finite numbers");
-  if (std::string why = group_family("SO").not_an_element(3, p.rotation, "heavy_top.rotation"); !why.empty())
-    unprocessable("heavy_top.rotation", why);
-  if (p.rotation.determinant() < 0.0)
-    unprocessable("heavy_top.rotation", "heavy_top.rotation must be a rotation (det +1), not a reflection");
-  if (problem.is(ProblemKind::heavy_top) && problem.z)
-    unprocessable("z", "heavy-top starts at heavy_top.rotation and heavy_top.omega: give those instead of z");
+    check_vector(*v, bound, std::string("heavy_top.") + name);
+  check_rotation(p.rotation, "heavy_top.rotation");
+  refuse_z(problem, ProblemKind::heavy_top, "heavy_top");
+}
+
+void check_stiff_body(const ProblemSpec& problem) {
+  const StiffBodyParams& p = problem.stiff_body;
+  constexpr double bound = StiffBodyParams::kBound;
+  const std::string text = fields::format_bound(bound);
+  if (!(p.k > 0.0 && p.k <= bound))
+    unprocessable("stiff_body.k", "stiff_body.k must be a finite number in (0, " + text + "]");
+  if (p.c && !(*p.c >= 0.0 && *p.c <= bound))
+    unprocessable("stiff_body.c", "stiff_body.c must be a finite number in [0, " + text + "]");
+  check_moments(p.J, bound, "stiff_body.J");
+  check_vector(p.f, bound, "stiff_body.f");
+  check_rotation(p.rotation, "stiff_body.rotation");
+  check_vector(p.omega, bound, "stiff_body.omega");
+  refuse_z(problem, ProblemKind::stiff_body, "stiff_body");
 }
 
 void check_workspace(const ProblemSpec& problem, int threads) {

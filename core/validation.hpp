@@ -31,6 +31,9 @@ void check_rigid_body(const RigidBodyParams& params);
 // heavy_top's parameters (422 naming e.g. heavy_top.mass): mass and inertia positive, every entry finite and at most
 // HeavyTopParams::kBound in size, rotation a rotation; and no z for heavy-top, whose start they give.
 void check_heavy_top(const ProblemSpec& problem);
+// stiff_body's parameters (422 naming e.g. stiff_body.k): k positive, c (when given) non-negative, J positive, every
+// number finite and at most StiffBodyParams::kBound in size, rotation a rotation; and no z for stiff-body.
+void check_stiff_body(const ProblemSpec& problem);
 // A user's program g: parameters well-named and finite, the program compiled for n (RequestError with its line
 // and column), its workspace on `threads` threads within user_field::kMaxWorkspaceBytes (413 naming g), g(z) in
 // the group's algebra; parameters without g are refused.

@@ -41,6 +41,16 @@ Words words(ProblemKind p) {
               "γ = (0, 0, −9.81), R(0) = I, ω(0) = (0, 150, −4.61538): a fast spin about the body y-axis. The "
               "exact flow keeps the energy ½ωᵀJω − m γᵀRχ, the vertical angular momentum e₃ᵀRJω and, for this "
               "Lagrange top, the body spin ω_y."};
+    case ProblemKind::stiff_body:
+      return {"stiff-body", "stiff-body (sprung, damped and forced body, SO(3)×R³)", "stiff-body",
+              "a stiff rigid body on SO(3)×R³: R′ = R·ω̂, Jω′ = (Jω)×ω − k·vee(skew R) − cω + f(t)",
+              "A rigid body pulled toward the identity attitude by a torsional spring and damper, with a smooth "
+              "forcing torque (not in the paper): the state (R, ω) on SO(3)×R³ (group SOxR, 7×7 block-diagonal "
+              "matrices), R′ = R·ω̂ and Jω′ = (Jω)×ω − k·vee(skew R) − cω + f(t), skew R = (R − Rᵀ)/2, f(t) = "
+              "(f₁ sin 2t, f₂ cos t, f₃). Defaults k = c = 10⁴, J = diag(1, 2, 3), f = (0.5, 0.3, 0.2), R(0) = "
+              "exp(hat(0.5, −0.3, 0.8)), ω(0) = (1, −2, 0.5): the damper's eigenvalues are about −c/Jᵢ (−10⁴, "
+              "−5·10³, −3.3·10³) against the slow part's ~1, the stiff benchmark of the implicit integrators. "
+              "Forced and damped, it conserves nothing: it reports no invariants."};
   }
   return {};
 }

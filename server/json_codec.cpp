@@ -293,7 +293,8 @@ Eigen::Vector3d read_value(const json& v, const fields::Field& row, const std::s
   return out;
 }
 
-// A 3 x 3 matrix of finite numbers (heavy_top.rotation; whether it is a rotation is the core's question, 422).
+// A 3 x 3 matrix of finite numbers (heavy_top.rotation, stiff_body.rotation; whether it is a rotation is the
+// core's question, 422).
 Eigen::Matrix3d read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<Eigen::Matrix3d>) {
   return read_matrix(v, path, 3, path + " must be a 3 x 3 array of rows of finite numbers");
 }

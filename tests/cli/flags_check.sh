@@ -3,7 +3,7 @@
 # by the field table: integers, numbers, enum strings, lists), flags override stdin, --pretty prints the same JSON
 # indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` (also
 # without choices) and `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text;
-# heavy-top integrates; t_end may exceed the server's cap.
+# heavy-top and stiff-body integrate; t_end may exceed the server's cap.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -51,4 +51,9 @@ jq -e '.status == "converged" and (.energy_drift > 0) and (.vertical_momentum_dr
 "$bin" render invariants --problem heavy-top --group SOxR --h 0.0078125 --t-end 0.0625 --width 320 --height 240 \
   < /dev/null > "$dir/invariants.png"
 png "$dir/invariants.png" || { echo "render invariants: not a PNG"; exit 1; }
+# The stiff body by flags: it converges and, forced and damped, reports no invariants.
+"$bin" integrate --problem stiff-body --group SOxR --integrator dirk-cg2 --h 0.0625 --t-end 0.25 \
+  --stiff-body '{"k":1e5,"c":1e5}' < /dev/null > "$dir/stiff.json"
+jq -e '.status == "converged" and .energy_drift == null and (.steps | length) == 4' "$dir/stiff.json" > /dev/null \
+  || { echo "integrate stiff-body: $(head -c 300 "$dir/stiff.json")"; exit 1; }
 echo "flags, --pretty and the render commands behave"

@@ -56,6 +56,8 @@ test::MatrixField field_of(const ProblemSpec& p) {
     case ProblemKind::rigid_body:
       return [body = RigidBody{p.rigid_body}](const Eigen::MatrixXd& y) { return Eigen::MatrixXd(body.g(Eigen::Matrix3d(y))); };
     case ProblemKind::heavy_top: return [top = HeavyTop{p.heavy_top}](const Eigen::MatrixXd& y) { return top.g(y); };
+    case ProblemKind::stiff_body:
+      return [body = StiffBody{p.stiff_body}](const Eigen::MatrixXd& y) { return body.g(y); };
   }
   return {};
 }

@@ -121,7 +121,7 @@ TEST(Solve, LastAllowedIterateIsStillTested) {
 TEST(Solve, ClosedFormAndSpectralPathsAgreeAtN3) {
   for (Method m : kAllMethods) {
     for (ProblemKind p : kAllProblems) {
-      if (!defined_on(p, SO3Group{})) continue;  // heavy-top: a problem on SO(3) x R^3
+      if (!defined_on(p, SO3Group{})) continue;  // heavy-top, stiff-body: problems on SO(3) x R^3
       SolveRequest req = paper_linear(3, m, Differential::exact);
       req.problem.kind = p;
       const Eigen::MatrixXd z = start_point(3, req.problem.seed);

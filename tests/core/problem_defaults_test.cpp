@@ -1,5 +1,5 @@
 // Defaults from each problem's time scale (core/time_scale.hpp): the stability map's default grid runs for every
-// built-in problem (rigid-body and heavy-top fix n = 3, so their maps sweep h alone), and work-precision at its
+// built-in problem (rigid-body, heavy-top and stiff-body fix n = 3, so their maps sweep h alone), and work-precision at its
 // defaults (every integrator, the problem's step sizes) gives each integrator's nominal order within 0.2 or an
 // honest null with its reason.
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include "core/integrate.hpp"
 #include "core/integrators/methods.hpp"
 #include "core/order_fit.hpp"
+#include "core/problems.hpp"
 #include "core/sweep.hpp"
 #include "core/time_scale.hpp"
 #include "core/work_precision.hpp"
@@ -20,7 +21,7 @@ namespace {
 
 ProblemSpec built_in(ProblemKind kind) {
   ProblemSpec p{.kind = kind};
-  if (kind == ProblemKind::heavy_top) p.group = "SOxR";
+  if (const auto group = required_group(kind)) p.group = *group;
   return p;
 }
 
@@ -30,7 +31,7 @@ TEST(ProblemDefaults, StabilityMapDefaultsRunForEveryBuiltInProblem) {
     req.problem = built_in(kind);
     const SweepRequest full = with_defaults(req);
     EXPECT_NO_THROW(validate(full)) << to_string(kind);
-    const bool fixed = kind == ProblemKind::rigid_body || kind == ProblemKind::heavy_top;
+    const bool fixed = required_index(kind).has_value();
     EXPECT_EQ(full.n.size(), fixed ? 1u : 14u) << to_string(kind);
     if (!fixed) continue;
     EXPECT_EQ(full.n.front(), 3);

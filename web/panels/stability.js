@@ -134,7 +134,7 @@ export function createStabilityPanel(root, { openSolve }) {
 
   function requestOf() {
     const problem = problemOf(form);
-    // rigid-body and heavy-top are written for one n: the map sweeps h alone there.
+    // rigid-body, heavy-top and stiff-body are written for one n: the map sweeps h alone there.
     const onlyN = problem.problem ? entry('problem', problem.problem).n : undefined;
     const request = { ...problem, methods: checkedValues(form, 'methods'),
       differential: value(form, 'differential'), n: onlyN ? [onlyN] : wholeRange(form, 'n_lo', 'n_hi', 'N'),

@@ -47,8 +47,8 @@ export function problemFields(d = DEFAULTS) {
   ];
 }
 
-// The request's field: {problem} (with its group when the server's catalog names one: heavy-top on SOxR), or
-// {g, parameters} when the form has a program. Parameters that are not JSON are sent as typed, so the server
+// The request's field: {problem} (with its group when the server's catalog names one: heavy-top and stiff-body on
+// SOxR), or {g, parameters} when the form has a program. Parameters that are not JSON are sent as typed, so the server
 // names the field.
 export function problemOf(form) {
   const g = form.elements.namedItem('g')?.value.trim();
