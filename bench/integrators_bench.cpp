@@ -32,6 +32,7 @@
 #include "core/cpu_clock.hpp"
 #include "core/group_registry.hpp"
 #include "core/integrate.hpp"
+#include "core/integrators/methods.hpp"
 #include "core/reference_solution.hpp"
 
 namespace {
@@ -43,8 +44,9 @@ struct Choice {
   Integrator integrator;
   Differential differential = Differential::exact;
   std::string name() const {
-    return std::string(to_string(integrator)) +
-           (differential == Differential::exact ? "" : "_" + std::string(to_string(differential)));
+    std::string n(to_string(integrator));
+    if (differential != Differential::exact) n.append("_").append(to_string(differential));
+    return n;
   }
 };
 

@@ -25,11 +25,13 @@
 //                         tests continuation.hpp applies to a stage of (1.1));
 //   h ||dg_{y_k}|| > 1    (stiff) from K = 0, around its first Newton iterate: the linearly implicit stages
 //                         K = (I - h A (x) J)^-1 (g(t_k + c_i h, y_k))_i, exact for a field linear in the chart, and
-//                         on the linearisation's branch for every h when A's and -J's eigenvalues lie in the right
-//                         half-plane (I - tau A (x) J is then regular for every tau in [0, h]);
+//                         on the linearisation's branch from h = 0 where I - tau A (x) J stays regular for every tau
+//                         in [0, h] (linearisation_regular(): J's large eigenvalues dissipative); where it may not,
+//                         as the tangent's regime;
 // otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
 // predictor; exact Newton corrector with the same two tests; step controlled as continuation.hpp's), and the
 // method's solve at h must stay at the branch's root. docs/integrators.md.
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -82,19 +84,23 @@ class RkmkStages {
   RkmkStages at_step(double h) const {
     RkmkStages s = *this;
     s.h_ = h;
-    s.stiffness_.reset();
     return s;
   }
 
   int size() const { return tab_->stages() * q_; }
   double h() const { return h_; }
   // h ||dg_{y_k}||_F: above 1 the step is stiff (the tangent's prediction is no guide to the root).
-  double stiffness() const {
-    if (!stiffness_) {
-      field_->set_time(t_);
-      stiffness_ = h_ * Eigen::MatrixXd(field_->dg_matrix(group_, y_)).norm();
-    }
-    return *stiffness_;
+  double stiffness() const { return h_ * jacobian_at_start().norm(); }
+  // Whether I - tau A (x) J, J = dg_{y_k}, is regular for every tau in [0, h], so that the linearly implicit stages
+  // lie on the linearisation's branch from h = 0: every eigenvalue mu of hJ is small (|mu| rho(A) < 1: a Neumann
+  // series) or has Re mu <= 0 (then mu lambda is never real and positive for an eigenvalue lambda of A, whose real
+  // part is positive in every implicit tableau here).
+  bool linearisation_regular() const {
+    const Eigen::VectorXcd mu = jacobian_at_start().eigenvalues();
+    const double rho = tab_->a.eigenvalues().cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < mu.size(); ++i)
+      if (h_ * std::abs(mu[i]) * rho >= 1.0 && mu[i].real() > 0.0) return false;
+    return true;
   }
   Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
   Vector theta(const Eigen::VectorXd& k, int i) const {
@@ -309,7 +315,15 @@ class RkmkStages {
   Element y_;
   double t_, h_;
   int q_;
-  mutable std::optional<double> stiffness_;  // evaluated once per step size: every solve's floor reads it
+  // dg_{y_k}, evaluated once per step: every solve's floor reads it.
+  const Eigen::MatrixXd& jacobian_at_start() const {
+    if (!jacobian_at_start_) {
+      field_->set_time(t_);
+      jacobian_at_start_ = Eigen::MatrixXd(field_->dg_matrix(group_, y_));
+    }
+    return *jacobian_at_start_;
+  }
+  mutable std::optional<Eigen::MatrixXd> jacobian_at_start_;
 };
 
 // The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0),
@@ -321,7 +335,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   constexpr int kMaxPathSteps = 400;
   constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
   constexpr double kStiff = 1.0;            // h ||dg_{y_k}||_F above which the step starts linearly implicit
-  const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff;
+  const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff && sys.linearisation_regular();
   const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
   StageSolution first = sys.solve(stiff ? Eigen::VectorXd(Eigen::VectorXd::Zero(sys.size())) : start, method, d, opt,
                                   simplified);
