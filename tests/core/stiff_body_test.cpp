@@ -81,8 +81,8 @@ TEST(StiffBody, FieldSeesTheStageTime) {
 // in R^9 x R^3 (stiff_body_reference_values.hpp, written by `python3 tests/core/stiff_body_reference.py`: Radau at
 // rtol = atol = 1e-13, DOP853 agreeing within 4e-14). rkmk-radau3 (order 5, L-stable) at h = 2^-8 is deep in the
 // stiff regime (h c / J_1 = 39 and 3900) and damps the damper's transient; at k = 1e4 its error stays near 1e-8
-// there (order reduction), so the field itself is pinned by rkmk-gauss3 at h = 2^-10, outside it, far below the
-// forcing's share of the state (|f| / k ~ 5e-5). The body conserves nothing: no invariants are reported.
+// there (order reduction), so the field itself is pinned by rkmk-gauss3 at h = 2^-10 (only mildly stiff), far
+// below the forcing's share of the state (|f| / k ~ 5e-5). The body conserves nothing: no invariants are reported.
 TEST(StiffBody, DefaultBodyMatchesScipyRadauAndDop853) {
   struct Run {
     double k;
