@@ -7,8 +7,8 @@
 //   h_new = h min(facmax, max(facmin, fac err^(-1/(p+1))))                                       (4.13)
 // with the safety factor fac; after a rejected step facmax = 1 (II.4: do not grow right after a rejection).
 // The step is accepted when err <= 1 and y2 (not the extrapolated value) is kept, so the result is the method's
-// own. Implicit RKMK methods give an embedded estimate instead (integrators/embedded_estimate.hpp), measured in the
-// same norm with the exponent of its own order. docs/integrators.md says which integrators use which.
+// own. On a stiff step an implicit RKMK method gives its embedded estimate instead (integrators/embedded_estimate.hpp),
+// measured in the same norm, and the next step takes the exponent of that estimate's order. docs/integrators.md.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,7 @@ namespace lienewton {
 struct StepSizeControl {
   double rtol;
   double atol;
-  int order;  // p of the integrator (order_of), or the embedded estimate's order
+  int order;  // p of the integrator (order_of)
 
   static constexpr double kSafety = 0.9;
   static constexpr double kMinFactor = 0.2;
@@ -40,11 +40,12 @@ struct StepSizeControl {
     return std::sqrt((e.array() / scale).square().mean());
   }
 
-  // The factor of the next step from the error estimate err of the last try (4.13).
-  double factor(double err, bool after_rejection) const {
+  // The factor of the next step from the error estimate err of the last try (4.13), an estimate of order
+  // estimate_order (step doubling's: p).
+  double factor(double err, bool after_rejection, int estimate_order) const {
     const double max_factor = after_rejection ? 1.0 : kMaxFactor;
     if (!(err > 0.0)) return max_factor;  // an exact step (err = 0)
-    return std::min(max_factor, std::max(kMinFactor, kSafety * std::pow(err, -1.0 / (order + 1))));
+    return std::min(max_factor, std::max(kMinFactor, kSafety * std::pow(err, -1.0 / (estimate_order + 1))));
   }
 };
 

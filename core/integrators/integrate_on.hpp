@@ -2,10 +2,10 @@
 // integrate_on(): the request's integrator on group G, by fixed or adaptive steps (stepper.hpp takes each step).
 // Fixed steps: a step whose stages cannot reach the continued root is taken again as two half steps, down to
 // 2^-kMaxHalvings of the step, inside the same output step; failing that the integration ends with the stage's
-// status, naming the step. Adaptive steps (rtol/atol, step_size_control.hpp): every try of an implicit RKMK method
-// is one step with its embedded estimate (embedded_estimate.hpp), of the others one whole step and two half steps;
-// it is rejected when the error estimate exceeds 1 or a step fails, and the integration ends with min_step below
-// the minimum step or max_steps at the bound on tries, naming t.
+// status, naming the step. Adaptive steps (rtol/atol, step_size_control.hpp): every try is one whole step and two
+// half steps (step doubling), or, for an implicit RKMK method on a stiff step (Stepper::stiff), one step with
+// its embedded estimate (embedded_estimate.hpp); it is rejected when the error estimate exceeds 1 or a step fails,
+// and the integration ends with min_step below the minimum step or max_steps at the bound on tries, naming t.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -35,7 +35,6 @@ class Integration {
         conserves_(has_invariants(req.problem)), y_(group.element(y0)),
         drift_(invariants(y_), conserves_ ? invariant_scales(req.problem, y0) : InvariantValues{}) {
     res_.adaptive = req.adaptive();
-    if (res_.adaptive) stepper_.estimate_errors();
   }
 
   IntegrateResult run() {
@@ -122,10 +121,12 @@ class Integration {
   struct Try {
     std::optional<Element> y;
     double error = 0.0;
+    int order = 0;  // of the estimate: the next step's exponent is -1/(order+1)
+    int substeps = 2;
   };
   Try try_step(const StepSizeControl& control, double t, double dt, bool refine, StepRecord& attempt,
                std::string& why) {
-    if (stepper_.estimates_error()) return try_embedded(control, t, dt, refine, attempt, why);
+    if (stepper_.estimates_error() && stepper_.stiff(y_, t, dt)) return try_embedded(control, t, dt, refine, attempt, why);
     const auto first = stepper_.take(y_, t, dt / 2, attempt);
     const auto second = first ? stepper_.take(*first, t + dt / 2, dt / 2, attempt) : std::nullopt;
     const auto whole = second ? stepper_.take(y_, t, dt, attempt) : std::nullopt;
@@ -137,9 +138,9 @@ class Integration {
     const double err = control.error(group_.matrix(y_), group_.matrix(*whole), group_.matrix(*second));
     if (!(err <= 1.0)) {
       why = "the error estimate at h = " + format_number(dt) + " is " + format_number(err);
-      return {std::nullopt, err};
+      return {std::nullopt, err, control.order};
     }
-    return {second, err};
+    return {second, err, control.order};
   }
 
   // One step and its embedded estimate; refine: the first try or the one after a rejection, where an estimate
@@ -159,10 +160,10 @@ class Integration {
     double err = size(stepper_.error_estimate(false, attempt));
     if (refine && !(err <= 1.0)) err = size(stepper_.error_estimate(true, attempt));
     if (!(err <= 1.0)) {
-      why = "the error estimate at h = " + format_number(dt) + " is " + format_number(err);
-      return {std::nullopt, err};
+      why = "the embedded error estimate at h = " + format_number(dt) + " is " + format_number(err);
+      return {std::nullopt, err, stepper_.estimate_order(), 1};
     }
-    return {next, err};
+    return {next, err, stepper_.estimate_order(), 1};
   }
 
   // t to 12 digits: where the steps fell below the minimum step, 3 digits would not tell t from a neighbour.
@@ -193,8 +194,7 @@ class Integration {
 
   void adaptive_steps() {
     const StepSizeControl control{req_.rtol.value_or(req_.atol.value_or(0.0)),
-                                  req_.atol.value_or(req_.rtol.value_or(0.0)),
-                                  stepper_.estimates_error() ? stepper_.estimate_order() : tab_.order};
+                                  req_.atol.value_or(req_.rtol.value_or(0.0)), tab_.order};
     double t = 0.0, dt = std::min(*req_.h, req_.t_end);
     double h_smallest = req_.t_end, h_largest = 0.0;
     bool after_rejection = false;
@@ -214,7 +214,7 @@ class Integration {
       rec.factorizations = attempt.factorizations;
       if (!step.y) {
         ++rec.rejected;
-        dt *= std::isfinite(step.error) && step.error > 0.0 ? control.factor(step.error, true)
+        dt *= std::isfinite(step.error) && step.error > 0.0 ? control.factor(step.error, true, step.order)
                                                              : StepSizeControl::kFailureFactor;
         after_rejection = true;
         continue;
@@ -226,12 +226,12 @@ class Integration {
       attempt.t = t;
       attempt.h = dt;
       attempt.error_estimate = step.error;
-      attempt.substeps = stepper_.estimates_error() ? 1 : 2;
+      attempt.substeps = step.substeps;
       h_smallest = std::min(h_smallest, dt);
       h_largest = std::max(h_largest, dt);
       if (!record(attempt, last)) return cancelled_after(attempt.step);
       rec = StepRecord{};
-      dt *= control.factor(step.error, after_rejection);
+      dt *= control.factor(step.error, after_rejection, step.order);
       after_rejection = false;
     }
     res_.reason = std::to_string(res_.steps.size()) + " adaptive steps (" + std::to_string(res_.rejected) +

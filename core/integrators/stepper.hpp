@@ -77,19 +77,25 @@ class Stepper {
   // What the last failing step ran into.
   const std::string& failure() const { return failure_; }
 
+  // Whether a step of dt from y at t is stiff: a component of the linearisation decays within it, h (-Re mu) > 1
+  // for an eigenvalue mu of dg_y. Step doubling's estimate then misjudges (order reduction) and the embedded one is
+  // filtered for it; a fast rotation (the heavy top's spin, Re mu ~ 0) is not stiff.
+  bool stiff(const Element& y, double t, double dt) const {
+    field_->set_time(t);
+    const Eigen::VectorXcd mu = Eigen::MatrixXd(field_->dg_matrix(group_, y)).eigenvalues();
+    return dt * -mu.real().minCoeff() > 1.0;
+  }
   // Whether take() can give an embedded error estimate (implicit RKMK methods), and its order s.
   bool estimates_error() const { return weights_.has_value(); }
-  // From now on every successful step computes its estimate.
-  void estimate_errors() { want_estimate_ = estimates_error(); }
   int estimate_order() const { return weights_ ? weights_->order : 0; }
   // The last successful implicit RKMK step's embedded error estimate err, in the algebra at its start y_k; refined:
-  // with g evaluated again at y_k exp(err) (rec counts the evaluation's matrices).
+  // with g evaluated again at y_k exp(err) (rec counts the matrices the filter needs).
   Vector error_estimate(bool refined, StepRecord& rec) {
-    if (!refined) return last_.error;
-    field_->set_time(last_.t);
-    const Vector g = field_->g(group_.times_exp(last_.y, last_.error));
     prepare_filter(last_.y, last_.t, last_.h, rec);
-    return filtered(g, last_.h);
+    const Vector err = filtered(last_.g, last_.h);
+    if (!refined) return err;
+    field_->set_time(last_.t);
+    return filtered(field_->g(group_.times_exp(last_.y, err)), last_.h);
   }
 
  private:
@@ -157,11 +163,7 @@ class Stepper {
       return std::nullopt;
     }
     previous_.emplace(t, g);
-    if (want_estimate_) {
-      prepare_filter(y, t, dt, rec);
-      last_ = {y, t, dt, stage_sum(sys.thetas(stages.k)), {}};
-      last_.error = filtered(g, dt);
-    }
+    if (weights_) last_ = {y, t, dt, stage_sum(sys.thetas(stages.k)), g, false};
     return sys.next(stages.k);
   }
 
@@ -185,10 +187,10 @@ class Stepper {
   // The estimate's filter (I - h gamma0 J)^-1 with J = dg at this step's start, unless the simplified Newton's kept
   // one is already factored at dt (any J near dg_{y_k} filters; Radau5 uses its Newton matrix's).
   void prepare_filter(const Element& y, double t, double dt, StepRecord& rec) {
-    if (opt_.differential == Differential::dexpinv_0 && opt_.method != Method::fixed_point && jacobian_ &&
-        matrix_->h() == dt)
-      return;
-    refresh_matrix(y, t, dt, rec);
+    const bool kept = opt_.differential == Differential::dexpinv_0 && opt_.method != Method::fixed_point &&
+                      jacobian_ && matrix_->h() == dt;
+    if (!kept && !last_.filter_ready) refresh_matrix(y, t, dt, rec);
+    last_.filter_ready = true;
   }
 
   // sum_j e_j Theta_j of the stacked stages Theta.
@@ -220,12 +222,12 @@ class Stepper {
   std::optional<Eigen::MatrixXd> jacobian_;
   bool jacobian_fresh_ = false, reuse_jacobian_ = false;
   std::optional<EmbeddedWeights> weights_;
-  bool want_estimate_ = false;
   struct LastStep {
     Element y;
     double t = 0, h = 0;
     Vector stages;  // sum_j e_j Theta_j
-    Vector error;
+    Vector g;       // g(t_k, y_k)
+    bool filter_ready = false;  // the filter is factored for this step
   } last_;
 };
 
