@@ -82,8 +82,9 @@ class Stepper {
   // filtered for it; a fast rotation (the heavy top's spin, Re mu ~ 0) is not stiff.
   bool stiff(const Element& y, double t, double dt) const {
     field_->set_time(t);
-    const Eigen::VectorXcd mu = Eigen::MatrixXd(field_->dg_matrix(group_, y)).eigenvalues();
-    return dt * -mu.real().minCoeff() > 1.0;
+    const Eigen::MatrixXd j(field_->dg_matrix(group_, y));
+    if (dt * j.norm() <= 1.0) return false;  // |mu| <= ||dg||_F: no eigenvalue to look for
+    return dt * -j.eigenvalues().real().minCoeff() > 1.0;
   }
   // Whether take() can give an embedded error estimate (implicit RKMK methods), and its order s.
   bool estimates_error() const { return weights_.has_value(); }
