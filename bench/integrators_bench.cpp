@@ -161,7 +161,8 @@ void Integrators_Stiffness(benchmark::State& state) {
   if (k <= 1e5) {
     const Choice rk4{Integrator::rkmk4};
     state.counters["rkmk4_cpu_k_over_k1e4"] =
-        cpu_for({stiff_body(k), 1.0, 1e-6, {rk4}}, rk4, state, 1) / cpu_for({stiff_body(1e4), 1.0, 1e-6, {rk4}}, rk4, state, 1);
+        cpu_for({stiff_body(k), 1.0, 1e-6, {rk4}}, rk4, state, 1) /
+        cpu_for({stiff_body(1e4), 1.0, 1e-6, {rk4}}, rk4, state, 1);
   }
 }
 
@@ -241,8 +242,12 @@ Race stiff_body_race(double k) {
 
 BENCHMARK_CAPTURE(Integrators_Race, rigid_body, rigid_body_race())->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(Integrators_Race, stiff, stiff_race())->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(Integrators_Race, stiff_body_k1e4, stiff_body_race(1e4))->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(Integrators_Race, stiff_body_k1e5, stiff_body_race(1e5))->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(Integrators_Race, stiff_body_k1e4, stiff_body_race(1e4))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(Integrators_Race, stiff_body_k1e5, stiff_body_race(1e5))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK(Integrators_Stiffness)->Arg(5)->Arg(6)->Arg(8)->Unit(benchmark::kMillisecond)->Iterations(1);
 Race rigid_body_alone(Integrator integrator) {
   return {ProblemSpec{.kind = ProblemKind::rigid_body}, 10.0, 1e-10, {{integrator}}};

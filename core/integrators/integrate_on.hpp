@@ -126,7 +126,8 @@ class Integration {
   };
   Try try_step(const StepSizeControl& control, double t, double dt, bool refine, StepRecord& attempt,
                std::string& why) {
-    if (stepper_.estimates_error() && stepper_.stiff(y_, t, dt)) return try_embedded(control, t, dt, refine, attempt, why);
+    if (stepper_.estimates_error() && stepper_.stiff(y_, t, dt))
+      return try_embedded(control, t, dt, refine, attempt, why);
     const auto first = stepper_.take(y_, t, dt / 2, attempt);
     const auto second = first ? stepper_.take(*first, t + dt / 2, dt / 2, attempt) : std::nullopt;
     const auto whole = second ? stepper_.take(y_, t, dt, attempt) : std::nullopt;

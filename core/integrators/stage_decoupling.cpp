@@ -50,8 +50,8 @@ bool DecoupledNewtonMatrix::factorize(double h, const Eigen::MatrixXd& j) {
   bool ok = true;
   for (std::size_t m = 0; m < d_.lambda.size(); ++m) {
     if (d_.pair[m]) {
-      const Eigen::MatrixXcd block = d_.lambda[m] * Eigen::MatrixXcd::Identity(q, q) - h * j.cast<std::complex<double>>();
-      complex_.emplace_back(block);
+      complex_.emplace_back(Eigen::MatrixXcd(d_.lambda[m] * Eigen::MatrixXcd::Identity(q, q) -
+                                             h * j.cast<std::complex<double>>()));
       ok = ok && detail::well_conditioned(complex_.back());
     } else {
       real_.emplace_back(d_.lambda[m].real() * Eigen::MatrixXd::Identity(q, q) - h * j);

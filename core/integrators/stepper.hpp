@@ -148,7 +148,8 @@ class Stepper {
     if (simplified) prepare_matrix(y, t, dt, rec);
     StageSolution stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_,
                                             simplified ? &*matrix_ : nullptr);
-    if (simplified && !stages.continued && !jacobian_fresh_) {  // the kept J may be what failed: once more with dg_{y_k}
+    // The kept J may be what failed: once more with dg_{y_k}.
+    if (simplified && !stages.continued && !jacobian_fresh_) {
       rec.iterations += stages.iterations;
       rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
       refresh_matrix(y, t, dt, rec);

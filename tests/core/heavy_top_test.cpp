@@ -25,6 +25,7 @@
 #include "core/solve.hpp"
 #include "core/order_fit.hpp"
 #include "heavy_top_field.hpp"
+#include "spoiled_requests.hpp"
 
 namespace lienewton {
 namespace {
@@ -283,12 +284,8 @@ TEST(HeavyTop, GroupsOwnTheirRotationPart) {
 // Each parameter out of its domain is a 422 naming it; so are another group than SOxR and a z beside the
 // parameters that give the start.
 TEST(HeavyTop, BadParametersAre422NamingTheField) {
-  struct Case {
-    const char* field;
-    std::function<void(ProblemSpec&)> spoil;
-  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<Case> cases = {
+  test::expect_each_refused_naming_its_field(heavy_top_request(), {
       {"heavy_top.mass", [](ProblemSpec& p) { p.heavy_top.mass = 0.0; }},
       {"heavy_top.mass", [&](ProblemSpec& p) { p.heavy_top.mass = nan; }},
       {"heavy_top.inertia", [](ProblemSpec& p) { p.heavy_top.inertia.y() = -1.0; }},
@@ -299,18 +296,7 @@ TEST(HeavyTop, BadParametersAre422NamingTheField) {
       {"heavy_top.rotation", [](ProblemSpec& p) { p.heavy_top.rotation(2, 2) = -1.0; }},
       {"group", [](ProblemSpec& p) { p.group = "SO"; }},
       {"z", [](ProblemSpec& p) { p.z = Eigen::MatrixXd::Identity(7, 7); }},
-  };
-  for (const Case& c : cases) {
-    IntegrateRequest req = heavy_top_request();
-    c.spoil(req.problem);
-    try {
-      validate(req);
-      ADD_FAILURE() << c.field << " was accepted";
-    } catch (const RequestError& e) {
-      EXPECT_EQ(e.kind(), RequestError::Kind::unprocessable) << c.field << ": " << e.what();
-      EXPECT_EQ(e.field(), c.field) << e.what();
-    }
-  }
+  });
 }
 
 }  // namespace

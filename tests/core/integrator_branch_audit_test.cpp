@@ -90,8 +90,8 @@ struct Tracked {
   Eigen::MatrixXd y;
   double tau = 0.0;  // where the tracker stopped (of the stage that stopped)
 };
-Tracked tracked_step(const integrators::Tableau& tab, const test::TimedField& g, const std::vector<Eigen::MatrixXd>& basis,
-                     const Eigen::MatrixXd& y, double t, double h) {
+Tracked tracked_step(const integrators::Tableau& tab, const test::TimedField& g,
+                     const std::vector<Eigen::MatrixXd>& basis, const Eigen::MatrixXd& y, double t, double h) {
   if (tab.form == integrators::Form::implicit_rkmk) {
     const test::StageSystem sys{g, basis, tab.a, tab.dexpinv_degree(), true};
     const test::StageTracker tracker(sys, y, t);
@@ -118,9 +118,10 @@ Tracked tracked_step(const integrators::Tableau& tab, const test::TimedField& g,
 class IntegratorBranchAudit : public ::testing::TestWithParam<int> {};
 
 TEST_P(IntegratorBranchAudit, EveryStepIsTheTrackersRoot) {
-  const std::vector<AuditCase> cases = {{"stiff-body k = 1e4", stiff_body(1e4), {0.5, 0.1}},
-                                        {"stiff-body k = 1e6", stiff_body(1e6), {0.5, 0.1}},
-                                        {"paper-sine N = 5", {.kind = ProblemKind::paper_sine, .n = 5}, {0.25, 1.0 / 16}}};
+  const std::vector<AuditCase> cases = {
+      {"stiff-body k = 1e4", stiff_body(1e4), {0.5, 0.1}},
+      {"stiff-body k = 1e6", stiff_body(1e6), {0.5, 0.1}},
+      {"paper-sine N = 5", {.kind = ProblemKind::paper_sine, .n = 5}, {0.25, 1.0 / 16}}};
   const AuditCase& c = cases[static_cast<std::size_t>(GetParam())];
   const std::vector<Eigen::MatrixXd> basis = c.problem.is(ProblemKind::stiff_body) ? so3xr3_basis() : son_basis(5);
   const test::TimedField g = field_of(c.problem);

@@ -93,7 +93,8 @@ class StageTracker {
   // dK/dtau = -(D_K F)^-1 dF/dtau.
   Eigen::VectorXd tangent(const Eigen::VectorXd& k, double tau, const Eigen::MatrixXd& jac) const {
     const double d = 1e-6 * std::max(tau, 1e-6);
-    const Eigen::VectorXd ft = (residual(k, tau + d) - residual(k, std::max(0.0, tau - d))) / (tau + d - std::max(0.0, tau - d));
+    const double below = std::max(0.0, tau - d);
+    const Eigen::VectorXd ft = (residual(k, tau + d) - residual(k, below)) / (tau + d - below);
     return -jac.partialPivLu().solve(ft);
   }
 

@@ -17,6 +17,7 @@
 #include "core/integrate.hpp"
 #include "core/problems.hpp"
 #include "core/request_error.hpp"
+#include "spoiled_requests.hpp"
 #include "stiff_body_reference_values.hpp"
 
 namespace lienewton {
@@ -122,12 +123,8 @@ TEST(StiffBody, DefaultBodyMatchesScipyRadauAndDop853) {
 // Each parameter out of its domain is a 422 naming it; so are another group than SOxR and a z beside the
 // parameters that give the start.
 TEST(StiffBody, BadParametersAre422NamingTheField) {
-  struct Case {
-    const char* field;
-    std::function<void(ProblemSpec&)> spoil;
-  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<Case> cases = {
+  test::expect_each_refused_naming_its_field(stiff_body_request(), {
       {"stiff_body.k", [](ProblemSpec& p) { p.stiff_body.k = -1.0; }},
       {"stiff_body.k", [](ProblemSpec& p) { p.stiff_body.k = 0.0; }},
       {"stiff_body.k", [&](ProblemSpec& p) { p.stiff_body.k = nan; }},
@@ -140,18 +137,7 @@ TEST(StiffBody, BadParametersAre422NamingTheField) {
       {"stiff_body.rotation", [](ProblemSpec& p) { p.stiff_body.rotation.row(2) *= -1.0; }},
       {"group", [](ProblemSpec& p) { p.group = "SO"; }},
       {"z", [](ProblemSpec& p) { p.z = Eigen::MatrixXd::Identity(7, 7); }},
-  };
-  for (const Case& c : cases) {
-    IntegrateRequest req = stiff_body_request();
-    c.spoil(req.problem);
-    try {
-      validate(req);
-      ADD_FAILURE() << c.field << " was accepted";
-    } catch (const RequestError& e) {
-      EXPECT_EQ(e.kind(), RequestError::Kind::unprocessable) << c.field << ": " << e.what();
-      EXPECT_EQ(e.field(), c.field) << e.what();
-    }
-  }
+  });
   IntegrateRequest undamped = stiff_body_request();
   undamped.h = 0.01;
   undamped.problem.stiff_body.c = 0.0;
