@@ -120,8 +120,10 @@ class Stepper {
       const SolveResult stage = continued_root(opt_.method, eq, opt_, {}, predictor_ == Predictor::none);
       rec.iterations += stage.total_iterations();
       rec.residual = std::max(rec.residual, stage.residual);
-      if (stage.status != Status::converged || stage.branch != Branch::continued) {
-        rec.status = stage.status == Status::converged ? Status::fold : stage.status;
+      // A stage at its rounding floor (stagnated: tol is below what double resolves at this h, as on a stiff
+      // field) is solved as well as it can be; the implicit RKMK stages stop at the same floor (rkmk_stages.hpp).
+      if (!is_root(stage) || stage.branch != Branch::continued) {
+        rec.status = is_root(stage) ? Status::fold : stage.status;
         failure_ = "stage " + std::to_string(i + 1) + " (h = " + format_number(dt) + "): " + stage.reason;
         return std::nullopt;
       }
