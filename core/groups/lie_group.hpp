@@ -21,9 +21,11 @@
 // pictures of frames draw; a group without it is refused there.
 // Adding a group: see docs/architecture.md ("Where a change goes").
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <concepts>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 namespace lienewton {
 
@@ -68,6 +70,10 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
   { g.not_reachable(m, m) } -> std::same_as<std::string>;
 };
 
+// Whether G's operators are sparse matrices (a system of bodies): the Newton matrix is then factored sparse.
+template <class G>
+inline constexpr bool kSparseOperator = std::is_base_of_v<Eigen::SparseMatrixBase<typename G::Operator>, typename G::Operator>;
+
 // Coordinates and operators sized by the group (fixed-size types ignore the size arguments).
 template <class G>
 typename G::Vector zero_vector(const G& g) {
@@ -77,13 +83,24 @@ template <class G>
 typename G::Vector basis_vector(const G& g, int i) {
   return G::Vector::Unit(g.dim(), i);
 }
+// A sparse Operator (PowerGroup's) is the empty pattern, or the identity's diagonal.
 template <class G>
 typename G::Operator zero_operator(const G& g) {
-  return G::Operator::Zero(g.dim(), g.dim());
+  if constexpr (kSparseOperator<G>) {
+    return typename G::Operator(g.dim(), g.dim());
+  } else {
+    return G::Operator::Zero(g.dim(), g.dim());
+  }
 }
 template <class G>
 typename G::Operator identity_operator(const G& g) {
-  return G::Operator::Identity(g.dim(), g.dim());
+  if constexpr (kSparseOperator<G>) {
+    typename G::Operator m(g.dim(), g.dim());
+    m.setIdentity();
+    return m;
+  } else {
+    return G::Operator::Identity(g.dim(), g.dim());
+  }
 }
 
 // log answers at this angle (the largest rotation angle of an element, or of a Spectral).

@@ -50,6 +50,7 @@ LIE_GROUP_CASE(SE3, SE3Group{}, false);
 LIE_GROUP_CASE(SO3xR3, SO3xR3Group{}, false);
 LIE_GROUP_CASE(SE3xR6, SE3xR6Group{}, false);
 LIE_GROUP_CASE(SO3xSO3xR6, SO3xSO3xR6Group{}, false);
+LIE_GROUP_CASE(SO3xR3Power3, SO3xR3PowerGroup(3), false);
 #undef LIE_GROUP_CASE
 
 class CaseNames {
@@ -103,7 +104,8 @@ class LieGroupProperties : public ::testing::Test {
   double norm(const M& y) const { return std::max(1.0, y.norm()); }
 };
 
-using Groups = ::testing::Types<SO3ClosedForm, SO2, SO3Spectral, SO4, SO7, SO8, SO15, R5, Rnxn3, SE3, SO3xR3, SE3xR6, SO3xSO3xR6>;
+using Groups = ::testing::Types<SO3ClosedForm, SO2, SO3Spectral, SO4, SO7, SO8, SO15, R5, Rnxn3, SE3, SO3xR3, SE3xR6, SO3xSO3xR6,
+                               SO3xR3Power3>;
 TYPED_TEST_SUITE(LieGroupProperties, Groups, CaseNames);
 
 // log(exp v) = v for |v| < pi - 1e-3 (inside log's domain on every rotation group) and exp(log y) = y, to
