@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "basins.hpp"
+#include "groups/body_frame.hpp"
 #include "integrate.hpp"
 #include "reference_solution.hpp"
 #include "solve.hpp"
@@ -41,9 +42,10 @@ class GroupFamily {
   virtual bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const = 0;  // basin_map.hpp
   // ||hat(vee(m)) - m||: how far the matrix m (matrix_size square) is from the algebra (a user's g must lie in it).
   virtual double algebra_defect(int n, const Eigen::MatrixXd& m) const = 0;
-  // The rotation part of an element (matrix_size square), where the group has one: the body axes that pictures of
-  // frames draw (SO(3): y itself; SE(3): R of [[R, p], [0, 1]]; SO(3) x R^3: its R). nullopt on the other groups.
-  virtual std::optional<Eigen::Matrix3d> rotation(int n, const Eigen::MatrixXd& m) const = 0;
+  // The bodies of an element (matrix_size square) as pictures draw them: a group with one rotation part gives one
+  // frame at the origin (SO(3): y itself; SE(3): R of [[R, p], [0, 1]]; SO(3) x R^3: its R), a system of bodies
+  // each body's axes at its position ((SE(3) x R^6)^k), the other groups none.
+  virtual std::vector<BodyFrame> body_frames(int n, const Eigen::MatrixXd& m) const = 0;
 
   // The requests on the group (validated by their callers).
   virtual SolveResult solve(const SolveRequest& request, const TraceCallback& on_iteration) const = 0;

@@ -63,12 +63,14 @@ class FamilyOf final : public GroupFamily {
     return Family::with_group(n, [&](const auto& g) { return lienewton::algebra_defect(g, m); });
   }
 
-  std::optional<Eigen::Matrix3d> rotation(int n, const Eigen::MatrixXd& m) const override {
-    return Family::with_group(n, [&](const auto& g) -> std::optional<Eigen::Matrix3d> {
-      if constexpr (requires { g.rotation(g.element(m)); }) {
-        return g.rotation(g.element(m));
+  std::vector<BodyFrame> body_frames(int n, const Eigen::MatrixXd& m) const override {
+    return Family::with_group(n, [&](const auto& g) -> std::vector<BodyFrame> {
+      if constexpr (requires { g.body_frames(g.element(m)); }) {
+        return g.body_frames(g.element(m));
+      } else if constexpr (requires { g.rotation(g.element(m)); }) {
+        return {{g.rotation(g.element(m)), Eigen::Vector3d::Zero()}};
       } else {
-        return std::nullopt;
+        return {};
       }
     });
   }

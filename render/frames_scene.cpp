@@ -50,12 +50,13 @@ std::array<int, 3> back_to_front(const Camera& camera, const Eigen::Matrix3d& fr
   return order;
 }
 
-void legend(Canvas& canvas) {
+// The start's legend word: z, the start point, where a solve's picture has one.
+void legend(Canvas& canvas, const char* start = "start z") {
   const float x = 10, line_height = 17;
   float y = canvas.scene_height() - 10 - 2 * line_height;
   const Color gray{110, 110, 110, 255};
   dashed(canvas, {x, y}, {x + 24, y}, 2.0f, gray);
-  canvas.text("start z", x + 32, y, TextSize::small, kTextColor);
+  canvas.text(start, x + 32, y, TextSize::small, kTextColor);
   y += line_height;
   canvas.line({x, y}, {x + 24, y}, 1.5f, mix(gray, canvas.background(), 0.6));
   canvas.text("earlier", x + 32, y, TextSize::small, kTextColor);
@@ -111,6 +112,88 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
     }
   }
   legend(canvas);
+}
+
+namespace {
+
+// Where each world point of the bodies' scene goes: into the unit ball, centered on everything drawn.
+struct BodiesFit {
+  Eigen::Vector3d center;
+  double scale;  // unit-ball lengths per world length
+  Eigen::Vector3d operator()(const Eigen::Vector3d& p) const { return scale * (p - center); }
+};
+
+BodiesFit fit_bodies(const std::vector<std::vector<BodyFrame>>& states, const std::vector<BodyFrame>& start) {
+  Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();  // the origin is drawn too
+  const auto take = [&](const std::vector<BodyFrame>& bodies) {
+    for (const BodyFrame& b : bodies) low = low.cwiseMin(b.position), high = high.cwiseMax(b.position);
+  };
+  for (const auto& state : states) take(state);
+  take(start);
+  const Eigen::Vector3d center = 0.5 * (low + high);
+  const double radius = std::max(0.5 * (high - low).norm(), 1e-12);
+  return {center, 0.85 / radius};
+}
+
+// The chain's polyline through the bodies' positions, from the origin.
+std::vector<Point> chain(const Camera& camera, const BodiesFit& fit, const std::vector<BodyFrame>& bodies) {
+  std::vector<Point> out{camera.project(fit(Eigen::Vector3d::Zero()))};
+  for (const BodyFrame& b : bodies) out.push_back(camera.project(fit(b.position)));
+  return out;
+}
+
+void check_bodies(const std::vector<BodyFrame>& bodies, std::size_t count) {
+  if (bodies.size() != count) throw std::invalid_argument("every state must have the same number of bodies");
+  for (const BodyFrame& b : bodies) {
+    check_entries(b.rotation, "a body's rotation");
+    if (!b.position.allFinite() || b.position.cwiseAbs().maxCoeff() > 1e6)
+      throw std::invalid_argument("a body's position is non-finite or beyond 1e6");
+  }
+}
+
+}  // namespace
+
+void draw_bodies(Canvas& canvas, const Camera& camera, const std::vector<std::vector<BodyFrame>>& states,
+                 const std::vector<BodyFrame>& start) {
+  check_bodies(start, start.size());
+  for (const auto& state : states) check_bodies(state, start.size());
+  const BodiesFit fit = fit_bodies(states, start);
+  // Axes as long as a third of the mean spacing of the last state's bodies: neighbours' axes do not cross.
+  const std::vector<BodyFrame>& last = states.empty() ? start : states.back();
+  double spacing = 0.0;
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+  for (const BodyFrame& b : last) spacing += (b.position - previous).norm(), previous = b.position;
+  const double axis = std::clamp(fit.scale * spacing / std::max<double>(1.0, double(last.size())) / 3.0, 0.03, 0.3);
+
+  const Color gray{110, 110, 110, 255};
+  // Earlier states: their chains only, at most 24 of them, from nearly background (oldest) to clearly drawn.
+  const std::size_t count = states.size(), stride = std::max<std::size_t>(1, count / 24);
+  for (std::size_t i = (count - 1) % stride; i + 1 < count; i += stride) {
+    const double age = 1.0 - static_cast<double>(i + 1) / static_cast<double>(count);
+    const std::vector<Point> line = chain(camera, fit, states[i]);
+    for (std::size_t j = 1; j < line.size(); ++j)
+      canvas.line(line[j - 1], line[j], 1.5f, mix(gray, canvas.background(), 0.3 + 0.6 * age));
+  }
+  const std::vector<Point> first = chain(camera, fit, start);
+  for (std::size_t j = 1; j < first.size(); ++j) dashed(canvas, first[j - 1], first[j], 2.0f, gray);
+  const std::vector<Point> line = chain(camera, fit, last);
+  for (std::size_t j = 1; j < line.size(); ++j) canvas.line(line[j - 1], line[j], 2.5f, gray);
+  // The last state's axes, farthest body first.
+  std::vector<std::size_t> order(last.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return camera.depth(last[a].position) < camera.depth(last[b].position);
+  });
+  for (std::size_t i : order) {
+    const Point at = camera.project(fit(last[i].position));
+    for (int a : back_to_front(camera, last[i].rotation)) {
+      const Eigen::Vector3d tip = fit(last[i].position) + axis * last[i].rotation.col(a);
+      canvas.line(at, camera.project(tip), 2.5f, kAxisColors[a]);
+    }
+  }
+  const Point pivot = camera.project(fit(Eigen::Vector3d::Zero()));
+  canvas.rect(pivot.x - 3, pivot.y - 3, pivot.x + 3, pivot.y + 3, kTextColor);
+  legend(canvas, "start");
 }
 
 }  // namespace lienewton::render

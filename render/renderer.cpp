@@ -117,6 +117,20 @@ Renderer::~Renderer() = default;
 std::vector<unsigned char> Renderer::frames_png(const std::vector<Eigen::Matrix3d>& frames,
                                                 const Eigen::Matrix3d& start, const FramesOptions& options,
                                                 const Caption& caption, ImageFormat format) {
+  return orbit_png(options, caption, format,
+                   [&](Canvas& canvas, const Camera& camera) { draw_frames(canvas, camera, frames, start); });
+}
+
+std::vector<unsigned char> Renderer::frames_png(const std::vector<std::vector<BodyFrame>>& states,
+                                                const std::vector<BodyFrame>& start, const FramesOptions& options,
+                                                const Caption& caption, ImageFormat format) {
+  return orbit_png(options, caption, format,
+                   [&](Canvas& canvas, const Camera& camera) { draw_bodies(canvas, camera, states, start); });
+}
+
+std::vector<unsigned char> Renderer::orbit_png(const FramesOptions& options, const Caption& caption,
+                                               ImageFormat format,
+                                               const std::function<void(Canvas&, const Camera&)>& draw) {
   validate_size("width", options.width, false);
   validate_size("height", options.height, false);
   if (!std::isfinite(options.azimuth_deg)) throw std::invalid_argument("azimuth_deg must be finite");
@@ -126,8 +140,8 @@ std::vector<unsigned char> Renderer::frames_png(const std::vector<Eigen::Matrix3
   const Caption shown = caption_height(caption, options.width) <= options.height - kMinImageSize ? caption : Caption{};
   Canvas canvas(options.width, options.height, kWhite);
   draw_caption(canvas, shown);
-  draw_frames(canvas, Camera(options.azimuth_deg, options.elevation_deg, options.width,
-                             static_cast<int>(canvas.scene_height())), frames, start);
+  draw(canvas, Camera(options.azimuth_deg, options.elevation_deg, options.width,
+                      static_cast<int>(canvas.scene_height())));
   if (format == ImageFormat::svg) return bytes_of(to_svg(canvas));
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
   return encode_png(rgb, options.width, options.height, RowOrder::bottom_up);

@@ -2,11 +2,15 @@
 // The render service's entry point: PNGs of rotation frames and of convergence heatmaps, drawn offscreen
 // with OpenGL (OSMesa or EGL, see gl_context.hpp), or each picture as SVG (format svg, no GL needed).
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "core/basins.hpp"
+#include "core/groups/body_frame.hpp"
 #include "core/sweep.hpp"
+#include "render/camera.hpp"
+#include "render/canvas.hpp"
 #include "render/caption.hpp"
 #include "render/figure.hpp"
 #include "render/options.hpp"
@@ -31,6 +35,10 @@ class Renderer {
   std::vector<unsigned char> frames_png(const std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start,
                                         const FramesOptions& options, const Caption& caption = {},
                                         ImageFormat format = ImageFormat::png);
+  // states: a system of bodies' frames, each state every body's (frames_scene.hpp's draw_bodies).
+  std::vector<unsigned char> frames_png(const std::vector<std::vector<BodyFrame>>& states,
+                                        const std::vector<BodyFrame>& start, const FramesOptions& options,
+                                        const Caption& caption = {}, ImageFormat format = ImageFormat::png);
   // caption: a band above the picture (caption.hpp); a given height includes it.
   std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,
                                          const Caption& caption = {}, ImageFormat format = ImageFormat::png);
@@ -41,6 +49,9 @@ class Renderer {
   std::vector<unsigned char> figure_png(const Figure& figure, ImageFormat format = ImageFormat::png);
 
  private:
+  // A scene under the orbit camera (the frames' pictures): options checked, caption band, drawn, encoded.
+  std::vector<unsigned char> orbit_png(const FramesOptions& options, const Caption& caption, ImageFormat format,
+                                       const std::function<void(Canvas&, const Camera&)>& draw);
   class Pool;
   std::unique_ptr<Pool> pool_;
 };

@@ -75,22 +75,27 @@ std::string take_string(json& request, const char* field) {
   return v;
 }
 
-// Frames are the body axes of each state's rotation part, as its group extracts it (GroupFamily::rotation): on
-// groups with one (SO(3), SE(3), SO(3) x R^3, SE(3) x R^6), where n is 3.
-void check_rotations(const ProblemSpec& p) {
+// Frames are the body axes of each state, as its group gives them (GroupFamily::body_frames): one rotation part
+// (SO(3), SE(3), SO(3) x R^3, SE(3) x R^6, where n is 3) or a system of bodies ((SE(3) x R^6)^k).
+void check_bodies(const ProblemSpec& p) {
   const GroupFamily& family = p.family();
-  const std::string why = "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR): ";
-  if (p.n != 3) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
-  const int size = family.matrix_size(p.n);
-  if (!family.rotation(p.n, Eigen::MatrixXd::Identity(size, size)))
-    throw ApiError(422, "unprocessable", "group", why + family.title(p.n) + " has none");
+  const std::string why =
+      "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR) or bodies (SExR^k): ";
+  const auto drawn = [&](int n) {
+    const int size = family.matrix_size(n);
+    return !family.body_frames(n, Eigen::MatrixXd::Identity(size, size)).empty();
+  };
+  if (drawn(p.n)) return;
+  // SO(3) has frames and SO(4) none: the index is what is wrong.
+  if (p.n != 3 && drawn(3)) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
+  throw ApiError(422, "unprocessable", "group", why + family.title(p.n) + " has none");
 }
 
-// The rotation part of each state (check_rotations has accepted the group).
-std::vector<Eigen::Matrix3d> rotations(const ProblemSpec& p, const std::vector<Eigen::MatrixXd>& states) {
+// Every state's bodies (check_bodies has accepted the group).
+std::vector<std::vector<BodyFrame>> bodies(const ProblemSpec& p, const std::vector<Eigen::MatrixXd>& states) {
   const GroupFamily& family = p.family();
-  std::vector<Eigen::Matrix3d> out;
-  for (const Eigen::MatrixXd& y : states) out.push_back(*family.rotation(p.n, y));
+  std::vector<std::vector<BodyFrame>> out;
+  for (const Eigen::MatrixXd& y : states) out.push_back(family.body_frames(p.n, y));
   return out;
 }
 
@@ -283,24 +288,28 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
   const int upto = take_int(request, "upto", -1, false);
   render::Caption caption;
-  const auto draw = [&](std::vector<Eigen::Matrix3d>& frames, const Eigen::Matrix3d& start) {
+  // One body is its rotation in the unit sphere; several are their axes at their positions.
+  const auto draw = [&](std::vector<std::vector<BodyFrame>>& frames, const std::vector<BodyFrame>& start) {
     if (upto >= static_cast<int>(frames.size())) {
       throw ApiError(422, "unprocessable", "upto", "upto must be below the number of frames (" +
                                                        std::to_string(frames.size()) + ")");
     }
     if (upto >= 0) frames.resize(static_cast<std::size_t>(upto) + 1);
-    return renderer.frames_png(frames, start, options, caption, format);
+    if (start.size() > 1) return renderer.frames_png(frames, start, options, caption, format);
+    std::vector<Eigen::Matrix3d> rotations;
+    for (const auto& state : frames) rotations.push_back(state.front().rotation);
+    return renderer.frames_png(rotations, start.front().rotation, options, caption, format);
   };
   // An integrate request is told apart by kind, or by a field only integrate requests have.
   std::string kind = take_string(request, "kind");
   if (kind.empty()) {
     kind = request.contains("integrator") || request.contains("t_end") || request.contains("frames") ? "integrate" : "solve";
   }
-  std::vector<Eigen::Matrix3d> frames;
-  Eigen::Matrix3d start;
+  std::vector<std::vector<BodyFrame>> frames;
+  std::vector<BodyFrame> start;
   if (kind == "solve") {
     SolveRequest r = solve_request_from_json(request, limits);
-    check_rotations(r.problem);
+    check_bodies(r.problem);
     r.solver.include_iterates = true;
     before_work(hooks);
     validate(r);
@@ -311,8 +320,8 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     for (const auto& t : result.trace)
       if (t.y.size() > 0) states.push_back(t.y);
     if (states.empty()) states.push_back(result.y);
-    frames = rotations(r.problem, states);
-    start = r.problem.z ? rotations(r.problem, {*r.problem.z}).front() : frames.front();
+    frames = bodies(r.problem, states);
+    start = r.problem.z ? bodies(r.problem, {*r.problem.z}).front() : frames.front();
     caption = {"Iterates y\u2080, y\u2081, \u2026 of " + std::string(words(r.solver.method).label),
                field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
                    " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
@@ -321,7 +330,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
   if (!request.contains("frames")) request["frames"] = 16;
   IntegrateRequest r = integrate_request_from_json(request, limits);
-  check_rotations(r.problem);
+  check_bodies(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   r.reference = false;  // the picture needs no global error
   before_work(hooks);
@@ -330,7 +339,7 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
-  frames = rotations(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
+  frames = bodies(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
   start = frames.front();
   const bool solves = solves_stages(r.integrator);  // rkmk4 is explicit: no method, differential or tol
   caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) +

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "body_frame.hpp"
 #include "lie_group.hpp"
 
 namespace lienewton {
@@ -115,11 +116,16 @@ class PowerGroup {
     return out;
   }
   Element project(const Element& y) const { return join([&](int i) { return body_.project(body(y, i)); }); }
-  // The first body's rotation, where the body has one; rotations(y) has every body's.
-  Eigen::Matrix3d rotation(const Element& y) const
-    requires requires(const B& g, const typename B::Element& e) { g.rotation(e); }
+  // Every body's axes at its position, where the body has both (SE(3) x R^6): what a picture of bodies draws.
+  std::vector<BodyFrame> body_frames(const Element& y) const
+    requires requires(const B& g, const typename B::Element& e) {
+      g.rotation(e);
+      g.position(e);
+    }
   {
-    return body_.rotation(body(y, 0));
+    std::vector<BodyFrame> out;
+    for (int i = 0; i < k_; ++i) out.push_back({body_.rotation(body(y, i)), body_.position(body(y, i))});
+    return out;
   }
   double principal_angle(double theta) const { return body_.principal_angle(theta); }
   Element tangent(const Element& y, const Element& u) const {

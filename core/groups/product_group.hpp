@@ -157,6 +157,12 @@ struct ProductGroup {
   {
     return factor<0>().rotation(block<0>(y));
   }
+  // The position of the first factor, where it has one (SE(3) x R^6: T's p).
+  Eigen::Vector3d position(const Element& y) const
+    requires requires(const Factor<0>& g, const typename Factor<0>::Element& e) { g.position(e); }
+  {
+    return factor<0>().position(block<0>(y));
+  }
   // As on SO(N), whose angle is also the largest of several: the wrap of the bounded factors' common angle.
   double principal_angle(double theta) const { return Measure{}.principal_angle(theta); }
   Element tangent(const Element& y, const Element& u) const {

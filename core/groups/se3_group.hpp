@@ -71,6 +71,7 @@ struct SE3Group {
                       (y.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm());
   }
   Eigen::Matrix3d rotation(const Element& y) const { return y.topLeftCorner<3, 3>(); }  // the body axes
+  Eigen::Vector3d position(const Element& y) const { return y.topRightCorner<3, 1>(); }
   Element project(const Element& y) const {  // the rotation block's polar factor, the translation kept
     Element out = Element::Identity();
     out.topLeftCorner<3, 3>() = orthogonal_polar_factor(Eigen::Matrix3d(y.topLeftCorner<3, 3>()));

@@ -267,18 +267,21 @@ TEST(HeavyTop, ReportedInvariantsAreThoseOfTheReturnedStates) {
   }
 }
 
-// Pictures of frames draw the rotation part each group extracts: SO(3)'s element, SE(3)'s and the products' R;
-// SO(4) has none.
+// Pictures of frames draw the rotation part each group extracts, as one body at the origin: SO(3)'s element,
+// SE(3)'s and the products' R; SO(4) has none.
 TEST(HeavyTop, GroupsOwnTheirRotationPart) {
   const Eigen::Matrix3d r = SO3Group{}.exp(Eigen::Vector3d(0.3, -1.1, 0.4));
   const Eigen::MatrixXd top = test::heavy_top_state(r, test::kHeavyTopOmega0);
-  EXPECT_EQ(group_family("SOxR").rotation(3, top).value(), r);
-  EXPECT_EQ(group_family("SO").rotation(3, r).value(), r);
   Eigen::Matrix4d motion = Eigen::Matrix4d::Identity();
   motion.topLeftCorner<3, 3>() = r;
   motion.topRightCorner<3, 1>() = Eigen::Vector3d(1, 2, 3);
-  EXPECT_EQ(group_family("SE").rotation(3, motion).value(), r);
-  EXPECT_FALSE(group_family("SO").rotation(4, Eigen::MatrixXd::Identity(4, 4)).has_value());
+  for (const auto& [group, y] : {std::pair<std::string, Eigen::MatrixXd>{"SOxR", top}, {"SO", r}, {"SE", motion}}) {
+    const std::vector<BodyFrame> frames = group_family(group).body_frames(3, y);
+    ASSERT_EQ(frames.size(), 1u) << group;
+    EXPECT_EQ(frames[0].rotation, r) << group;
+    EXPECT_EQ(frames[0].position, Eigen::Vector3d::Zero()) << group;
+  }
+  EXPECT_TRUE(group_family("SO").body_frames(4, Eigen::MatrixXd::Identity(4, 4)).empty());
 }
 
 // Each parameter out of its domain is a 422 naming it; so are another group than SOxR and a z beside the

@@ -98,5 +98,28 @@ TEST(FramesScene, NonRotationsAreRejected) {
   EXPECT_THROW(testing::shared_renderer().frames_png({id}, huge, FramesOptions{}), std::invalid_argument);
 }
 
+// Three bodies hanging below the origin along -y, front view: each body's x axis is drawn in red at its position,
+// the chain between them in gray, and the scene is fitted into the picture (the lowest body inside it).
+TEST(FramesScene, BodiesAreTheirAxesAtTheirPositions) {
+  std::vector<BodyFrame> chain;
+  for (int i = 1; i <= 3; ++i) chain.push_back({Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, -0.5 * i, 0)});
+  const FramesOptions options{400, 400, 0, 0};
+  const DecodedImage image = decode_png(testing::shared_renderer().frames_png({chain}, chain, options));
+  const Camera camera(0, 0, 400, 400);
+  // The fit: the box from the origin to the lowest body, centred, its half-diagonal 0.85 of the unit sphere's place.
+  const auto at = [](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    return (0.85 / 0.75) * (p - Eigen::Vector3d(0, -0.75, 0));
+  };
+  for (const BodyFrame& body : chain) {
+    const Point red = camera.project(at(body.position + Eigen::Vector3d(0.08, 0, 0)));
+    EXPECT_TRUE(testing::near(pixel_at(image, red), kAxisColors[0], 2)) << "body at " << body.position.y();
+    EXPECT_GT(red.y, 0);
+    EXPECT_LT(red.y, 400);
+  }
+  const Color link = pixel_at(image, camera.project(at(Eigen::Vector3d(0, -0.75, 0))));
+  EXPECT_TRUE(testing::near(link, Color{110, 110, 110, 255}, 30)) << int(link.r) << " " << int(link.g);
+  EXPECT_THROW(testing::shared_renderer().frames_png({chain, {chain.front()}}, chain, options), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace lienewton::render
