@@ -37,9 +37,7 @@ class VectorField {
   virtual void set_time(double /*t*/) {}
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
-    Operator m = zero_operator(group);
-    for (int i = 0; i < group.dim(); ++i) m.col(i) = dg(y, basis_vector(group, i));
-    return m;
+    return operator_from_columns(group, [&](const Vector& u) -> Vector { return dg(y, u); });
   }
 };
 
