@@ -1,0 +1,159 @@
+// The chain (core/chain.hpp) on (SE(3) x R^6)^k: its exact dg against central differences of g (error falling like
+// t^2), dg's block-tridiagonal pattern, the energy balance dE/dt = -c sum |d_j'|^2 along the field, the hanging
+// chain's static sag as an equilibrium, its start, and the groups it is defined on.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/chain.hpp"
+#include "tests/core/random_algebra.hpp"
+
+namespace lienewton {
+namespace {
+
+using Group = SE3xR6PowerGroup;
+using Element = Group::Element;
+
+// A state near the default start: every link moved by up to ~0.05 in each coordinate (poses off the straight line,
+// joints open by centimetres) and turning and moving at ~1 rad/s and ~1 m/s.
+Element shaken(const Chain& chain, int k, std::uint64_t seed) {
+  const Group group(k);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd u(group.dim());
+  for (int i = 0; i < group.dim(); ++i) u(i) = (i % 12 < 6 ? 0.05 : 1.0) * normal(rng);
+  return group.times_exp(chain.start_strip(k), u);
+}
+
+// Central differences of g along y exp(t u), for every column of dg.
+Eigen::MatrixXd central_differences(const Chain& chain, const Element& y, double t) {
+  const Group group(Chain::links(y));
+  Eigen::MatrixXd m(group.dim(), group.dim());
+  for (int j = 0; j < group.dim(); ++j) {
+    const Eigen::VectorXd u = basis_vector(group, j);
+    m.col(j) = (chain.coordinates(group.times_exp(y, t * u)) - chain.coordinates(group.times_exp(y, -t * u))) / (2 * t);
+  }
+  return m;
+}
+
+TEST(Chain, ExactDifferentialMatchesCentralDifferencesWithSlopeTwo) {
+  const Chain chain{ChainParams{}};
+  for (int k : {2, 5})
+    for (std::uint64_t seed : {1u, 2u}) {
+      const Group group(k);
+      const Element y = shaken(chain, k, seed);
+      const Eigen::MatrixXd exact(chain.dg_matrix(group, y));
+      std::vector<double> err;
+      for (double t : {1e-3, 5e-4, 2.5e-4}) err.push_back((central_differences(chain, y, t) - exact).norm() / exact.norm());
+      EXPECT_NEAR(err[0] / err[1], 4.0, 0.4) << "k " << k << " seed " << seed;
+      EXPECT_NEAR(err[1] / err[2], 4.0, 0.4) << "k " << k << " seed " << seed;
+      EXPECT_LT(err[2], 1e-6) << "k " << k << " seed " << seed;
+      // dg as the field applies it is the matrix's product
+      std::mt19937_64 rng(seed);
+      const Eigen::VectorXd u = test::random_direction(group, rng);
+      EXPECT_LE((group.vee(chain.dg(y, group.hat(u), y)) - exact * u).norm(), 1e-14 * exact.norm());
+    }
+}
+
+// Link i touches links i - 1 and i + 1 only, and every neighbour's block is there.
+TEST(Chain, DifferentialIsBlockTridiagonal) {
+  const Chain chain{ChainParams{}};
+  const int k = 6;
+  const Group group(k);
+  const Group::Operator m = chain.dg_matrix(group, shaken(chain, k, 3));
+  Eigen::MatrixXd block_norms = Eigen::MatrixXd::Zero(k, k);
+  for (int c = 0; c < m.outerSize(); ++c)
+    for (Group::Operator::InnerIterator it(m, c); it; ++it) {
+      EXPECT_LE(std::abs(it.row() / 12 - it.col() / 12), 1) << it.row() << ", " << it.col();
+      block_norms(it.row() / 12, it.col() / 12) += it.value() * it.value();
+    }
+  for (int i = 0; i < k; ++i) {
+    EXPECT_GT(block_norms(i, i), 0.0) << i;
+    if (i > 0) {
+      EXPECT_GT(block_norms(i, i - 1), 0.0) << i;
+    }
+    if (i + 1 < k) {
+      EXPECT_GT(block_norms(i, i + 1), 0.0) << i;
+    }
+  }
+}
+
+// dE/dt along the field (central differences of E(y exp(t g(y))), Richardson-extrapolated) is -c sum |d_j'|^2: 0
+// at c = 0.
+TEST(Chain, EnergyChangesOnlyByTheDampersWork) {
+  for (double c : {0.0, 200.0, 5e3}) {
+    ChainParams params;
+    params.damping = c;
+    const Chain chain{params};
+    for (int k : {2, 5}) {
+      const Group group(k);
+      const Element y = shaken(chain, k, 4);
+      const Eigen::VectorXd g = chain.coordinates(y);
+      const auto rate = [&](double t) {
+        return (chain.energy(group.times_exp(y, t * g)) - chain.energy(group.times_exp(y, -t * g))) / (2 * t);
+      };
+      const double t = 1e-5, measured = (4 * rate(t / 2) - rate(t)) / 3;
+      double dissipation = 0.0, scale = 0.0;  // scale: the springs' power, the largest term in dE/dt
+      for (int j = 0; j < k; ++j) {
+        dissipation += c * chain.gap_rate(y, j).squaredNorm();
+        scale += params.stiffness * chain.gap(y, j).norm() * chain.gap_rate(y, j).norm();
+      }
+      EXPECT_NEAR(measured, -dissipation, 1e-7 * scale) << "c " << c << " k " << k;
+      if (c > 0.0) {
+        EXPECT_GT(dissipation, 1e-3 * scale) << "the check must see the dampers";
+      }
+    }
+  }
+}
+
+// Hanging straight down at rest, joint j stretched by the weight of the k - j links below it over k_s: every
+// acceleration vanishes. Without the sag (joints closed) gravity's pull is not balanced.
+TEST(Chain, HangingChainAtItsStaticSagIsAnEquilibrium) {
+  ChainParams params;
+  params.tilt = 0.0;
+  const Chain chain{params};
+  for (int k : {2, 5}) {
+    const Group group(k);
+    Element y = chain.start_strip(k);
+    const double weight = params.mass * -params.gravity.z();
+    double top = 0.0;  // z of link i's top point
+    for (int i = 0; i < k; ++i) {
+      top -= (k - i) * weight / params.stiffness;
+      Group::body(y, i)(2, 3) = top - params.length / 2;
+      top -= params.length;
+    }
+    const auto accelerations = [&](const Element& state) {
+      const Eigen::VectorXd g = chain.coordinates(state);
+      double out = 0.0;
+      for (int i = 0; i < k; ++i) out = std::max(out, g.segment<6>(12 * i + 6).cwiseAbs().maxCoeff());
+      return out;
+    };
+    EXPECT_LT(accelerations(y), 1e-12 * k * weight) << "k " << k;
+    EXPECT_GT(accelerations(chain.start_strip(k)), 0.5 * weight) << "k " << k;
+  }
+}
+
+// The start: straight, at rest, joints closed, link 1's axis turned by tilt about x from -z; the energy is
+// gravity's alone.
+TEST(Chain, StartsStraightAtRestWithClosedJoints) {
+  const ChainParams params;
+  const Chain chain{params};
+  const int k = 4;
+  const Element y = chain.start_strip(k);
+  double potential = 0.0;
+  for (int i = 0; i < k; ++i) {
+    EXPECT_LE(chain.gap(y, i).norm(), 1e-15) << i;
+    EXPECT_TRUE((Group::body(y, i).block<6, 1>(4, 10).isZero(0.0))) << i;
+    potential -= params.mass * params.gravity.dot(Group::body(y, i).block<3, 1>(0, 3));
+  }
+  const Eigen::Vector3d axis = Group::body(y, 0).topLeftCorner<3, 3>() * Eigen::Vector3d::UnitZ();
+  EXPECT_NEAR(std::acos(axis.dot(Eigen::Vector3d::UnitZ())), params.tilt, 1e-14);
+  EXPECT_NEAR(chain.energy(y), potential, 1e-12 * std::abs(potential));
+  EXPECT_LE(Group(k).defect(y), 1e-15);
+}
+
+}  // namespace
+}  // namespace lienewton
