@@ -1,6 +1,8 @@
 #include "chain.hpp"
 
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -188,6 +190,12 @@ double Chain::energy_scale(const Element& y) const {
          p.mass * p.gravity.norm() * b.x.norm() + 0.5 * p.stiffness * gap(y, i).squaredNorm();
   }
   return e;
+}
+
+double Chain::rate() const {
+  const ChainParams& p = params_;
+  const double s = 1.0 / p.mass + 0.25 * p.length * p.length / std::min(p.inertia.x(), p.inertia.y());
+  return std::max({std::sqrt(4.0 * p.stiffness * s), 4.0 * p.damping * s, std::sqrt(p.gravity.norm() / p.length)});
 }
 
 Chain::Element Chain::start_strip(int k) const {

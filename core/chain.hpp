@@ -60,6 +60,11 @@ class Chain {
   Eigen::Vector3d gap(const Element& y, int j) const;
   Eigen::Vector3d gap_rate(const Element& y, int j) const;
 
+  // The chain's time scale, a bound on the rates of its linearisation at rest for every k: a joint's angular
+  // frequency sqrt(4 k_s s) and its damper's rate 4 c s, with s = 1/m + (L/2)^2 / J_across the compliance of a
+  // link's end point (4 bounds a path graph's Laplacian), and the swing's sqrt(|gamma| / L) (soft joints).
+  double rate() const;
+
   // y(0) of k links: straight, at rest, joints closed, turned by tilt about the space x axis from hanging along -z.
   Element start_strip(int k) const;
   Eigen::MatrixXd start(int k) const { return Group(k).matrix(start_strip(k)); }

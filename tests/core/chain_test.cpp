@@ -4,11 +4,20 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
 #include <random>
 #include <vector>
 
 #include "core/chain.hpp"
+#include "core/groups/son_group.hpp"
+#include "core/problems.hpp"
+#include "core/request_error.hpp"
+#include "core/validation.hpp"
 #include "tests/core/random_algebra.hpp"
 
 namespace lienewton {
@@ -47,7 +56,8 @@ TEST(Chain, ExactDifferentialMatchesCentralDifferencesWithSlopeTwo) {
       const Element y = shaken(chain, k, seed);
       const Eigen::MatrixXd exact(chain.dg_matrix(group, y));
       std::vector<double> err;
-      for (double t : {1e-3, 5e-4, 2.5e-4}) err.push_back((central_differences(chain, y, t) - exact).norm() / exact.norm());
+      for (double t : {1e-3, 5e-4, 2.5e-4})
+        err.push_back((central_differences(chain, y, t) - exact).norm() / exact.norm());
       EXPECT_NEAR(err[0] / err[1], 4.0, 0.4) << "k " << k << " seed " << seed;
       EXPECT_NEAR(err[1] / err[2], 4.0, 0.4) << "k " << k << " seed " << seed;
       EXPECT_LT(err[2], 1e-6) << "k " << k << " seed " << seed;
@@ -109,22 +119,31 @@ TEST(Chain, EnergyChangesOnlyByTheDampersWork) {
   }
 }
 
-// Hanging straight down at rest, joint j stretched by the weight of the k - j links below it over k_s: every
-// acceleration vanishes. Without the sag (joints closed) gravity's pull is not balanced.
+// Hanging straight down along -z at rest, joint j (0-based) stretched by the weight of the k - j links below it
+// over k_s (gamma along -z).
+Element sagging(const Chain& chain, int k) {
+  const ChainParams& params = chain.params();
+  ChainParams straight = params;
+  straight.tilt = 0.0;
+  Element y = Chain{straight}.start_strip(k);
+  const double weight = params.mass * -params.gravity.z();
+  double top = 0.0;  // z of link i's top point
+  for (int i = 0; i < k; ++i) {
+    top -= (k - i) * weight / params.stiffness;
+    Group::body(y, i)(2, 3) = top - params.length / 2;
+    top -= params.length;
+  }
+  return y;
+}
+
+// At the static sag every acceleration vanishes; without it (joints closed) gravity's pull is not balanced.
 TEST(Chain, HangingChainAtItsStaticSagIsAnEquilibrium) {
   ChainParams params;
   params.tilt = 0.0;
   const Chain chain{params};
+  const double weight = params.mass * -params.gravity.z();
   for (int k : {2, 5}) {
-    const Group group(k);
-    Element y = chain.start_strip(k);
-    const double weight = params.mass * -params.gravity.z();
-    double top = 0.0;  // z of link i's top point
-    for (int i = 0; i < k; ++i) {
-      top -= (k - i) * weight / params.stiffness;
-      Group::body(y, i)(2, 3) = top - params.length / 2;
-      top -= params.length;
-    }
+    const Element y = sagging(chain, k);
     const auto accelerations = [&](const Element& state) {
       const Eigen::VectorXd g = chain.coordinates(state);
       double out = 0.0;
@@ -134,6 +153,21 @@ TEST(Chain, HangingChainAtItsStaticSagIsAnEquilibrium) {
     EXPECT_LT(accelerations(y), 1e-12 * k * weight) << "k " << k;
     EXPECT_GT(accelerations(chain.start_strip(k)), 0.5 * weight) << "k " << k;
   }
+}
+
+// Chain::rate bounds the rates of the linearisation at the hanging rest (dg's eigenvalues there, g = 0) and is
+// within a factor 8 of the fastest, damped or not (the bound is for long chains: 5 times one link's).
+TEST(Chain, RateBoundsTheModesAtRest) {
+  for (double c : {0.0, 200.0, 2e3})
+    for (int k : {1, 2, 4, 8}) {
+      ChainParams params;
+      params.damping = c;
+      const Chain chain{params};
+      const Eigen::MatrixXd m(chain.dg_matrix(Group(k), sagging(chain, k)));
+      const double fastest = m.eigenvalues().cwiseAbs().maxCoeff();
+      EXPECT_LE(fastest, chain.rate()) << "c " << c << " k " << k;
+      EXPECT_GE(fastest, chain.rate() / 8) << "c " << c << " k " << k;
+    }
 }
 
 // The start: straight, at rest, joints closed, link 1's axis turned by tilt about x from -z; the energy is
@@ -153,6 +187,62 @@ TEST(Chain, StartsStraightAtRestWithClosedJoints) {
   EXPECT_NEAR(std::acos(axis.dot(Eigen::Vector3d::UnitZ())), params.tilt, 1e-14);
   EXPECT_NEAR(chain.energy(y), potential, 1e-12 * std::abs(potential));
   EXPECT_LE(Group(k).defect(y), 1e-15);
+}
+
+// Written on the strips of (SE(3) x R^6)^k alone: not on one link's group, nor on k attitudes, nor SO(n).
+TEST(Chain, IsDefinedOnTheLinksPowerGroupOnly) {
+  EXPECT_TRUE(defined_on(ProblemKind::chain, SE3xR6PowerGroup(2)));
+  EXPECT_TRUE(defined_on(ProblemKind::chain, SE3xR6PowerGroup(128)));
+  EXPECT_FALSE(defined_on(ProblemKind::chain, SE3xR6Group{}));
+  EXPECT_FALSE(defined_on(ProblemKind::chain, SO3xR3PowerGroup(4)));
+  EXPECT_FALSE(defined_on(ProblemKind::chain, SO3xR3Group{}));
+  EXPECT_FALSE(defined_on(ProblemKind::chain, SONGroup(11)));
+  EXPECT_EQ(required_group(ProblemKind::chain), std::optional<std::string>("SExR^k"));
+  EXPECT_EQ(required_index(ProblemKind::chain), std::nullopt);  // n = k, any the family takes
+  EXPECT_TRUE(starts_from_parameters(ProblemKind::chain));
+}
+
+// Each parameter out of its domain is a 422 naming it; a z beside the tilt that gives the start too.
+TEST(Chain, BadParametersAre422NamingTheField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Spoiled {
+    const char* field;
+    std::function<void(ProblemSpec&)> spoil;
+  };
+  const std::vector<Spoiled> cases = {
+      {"chain.mass", [](ProblemSpec& p) { p.chain.mass = 0.0; }},
+      {"chain.mass", [&](ProblemSpec& p) { p.chain.mass = nan; }},
+      {"chain.length", [](ProblemSpec& p) { p.chain.length = -0.5; }},
+      {"chain.length", [](ProblemSpec& p) { p.chain.length = 2 * ChainParams::kBound; }},
+      {"chain.stiffness", [](ProblemSpec& p) { p.chain.stiffness = -1.0; }},
+      {"chain.stiffness", [](ProblemSpec& p) { p.chain.stiffness = std::numeric_limits<double>::infinity(); }},
+      {"chain.damping", [](ProblemSpec& p) { p.chain.damping = -1e-3; }},
+      {"chain.damping", [&](ProblemSpec& p) { p.chain.damping = nan; }},
+      {"chain.inertia", [](ProblemSpec& p) { p.chain.inertia.z() = 0.0; }},
+      {"chain.gravity", [&](ProblemSpec& p) { p.chain.gravity.x() = nan; }},
+      {"chain.gravity", [](ProblemSpec& p) { p.chain.gravity.z() = -1e300; }},
+      {"chain.tilt", [](ProblemSpec& p) { p.chain.tilt = 4.0; }},
+      {"chain.tilt", [&](ProblemSpec& p) { p.chain.tilt = nan; }},
+      {"z", [](ProblemSpec& p) { p.z = Eigen::MatrixXd::Identity(22, 22); }},
+  };
+  ProblemSpec valid;
+  valid.kind = ProblemKind::chain;
+  valid.group = "SExR^k";
+  valid.n = 2;
+  EXPECT_NO_THROW(validation::check_chain(valid));
+  valid.chain.stiffness = valid.chain.damping = 0.0;  // free links, undamped: allowed
+  EXPECT_NO_THROW(validation::check_chain(valid));
+  for (const Spoiled& c : cases) {
+    ProblemSpec spoiled = valid;
+    c.spoil(spoiled);
+    try {
+      validation::check_chain(spoiled);
+      ADD_FAILURE() << c.field << " was accepted";
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.kind(), RequestError::Kind::unprocessable) << c.field << ": " << e.what();
+      EXPECT_EQ(e.field(), c.field) << e.what();
+    }
+  }
 }
 
 }  // namespace
