@@ -14,10 +14,12 @@
 #include <vector>
 
 #include "core/chain.hpp"
+#include "core/groups/so3.hpp"
 #include "core/groups/son_group.hpp"
 #include "core/problems.hpp"
 #include "core/request_error.hpp"
 #include "core/validation.hpp"
+#include "tests/core/chain_flat_reference.hpp"
 #include "tests/core/random_algebra.hpp"
 
 namespace lienewton {
@@ -187,6 +189,46 @@ TEST(Chain, StartsStraightAtRestWithClosedJoints) {
   EXPECT_NEAR(std::acos(axis.dot(Eigen::Vector3d::UnitZ())), params.tilt, 1e-14);
   EXPECT_NEAR(chain.energy(y), potential, 1e-12 * std::abs(potential));
   EXPECT_LE(Group(k).defect(y), 1e-15);
+}
+
+// The reference's equations in flat coordinates (chain_flat_reference.hpp, written apart from chain.cpp) are the
+// field's: the same rates of R and x, the same accelerations, at shaken states, stiff or soft.
+TEST(Chain, FlatReferenceHasTheSameEquations) {
+  ChainParams soft;
+  soft.stiffness = 1e3;
+  soft.damping = 20.0;
+  for (const ChainParams& params : {ChainParams{}, soft})
+    for (int k : {2, 5}) {
+      const Chain chain{params};
+      const test::FlatChain flat(params, k);
+      const Element y = shaken(chain, k, 5);
+      const Eigen::VectorXd g = chain.coordinates(y), d = flat.derivative(flat.flat(y));
+      for (int i = 0; i < k; ++i) {
+        const Eigen::Matrix3d r = Group::body(y, i).topLeftCorner<3, 3>();
+        const Eigen::Matrix3d turn = Eigen::Map<const Eigen::Matrix3d>(d.data() + 18 * i);
+        EXPECT_LE((turn - r * so3::hat(g.segment<3>(12 * i))).norm(), 1e-15) << i;
+        EXPECT_LE((d.segment<3>(18 * i + 9) - r * g.segment<3>(12 * i + 3)).norm(), 1e-15) << i;
+        const Eigen::Matrix<double, 6, 1> a = g.segment<6>(12 * i + 6);
+        EXPECT_LE((d.segment<6>(18 * i + 12) - a).norm(), 1e-13 * a.norm()) << "link " << i << " k " << k;
+      }
+    }
+}
+
+// The reference's RK4 is of order 4 on the soft chain (k_s = 1e3, c = 20: its fastest rate ~125 1/s, h rate <= 0.05)
+// and its 20000 steps to t = 1 are within ~1e-12 of the solution (a fifteenth of the last halving's change).
+TEST(Chain, FlatReferenceConvergesAtOrderFour) {
+  ChainParams soft;
+  soft.stiffness = 1e3;
+  soft.damping = 20.0;
+  for (int k : {2, 4, 8}) {
+    const test::FlatChain flat(soft, k);
+    const Eigen::VectorXd s0 = flat.flat(Chain{soft}.start_strip(k));
+    std::vector<Eigen::VectorXd> s;
+    for (int steps : {2500, 5000, 10000, 20000}) s.push_back(flat.rk4(s0, 1.0, steps));
+    const double e0 = (s[1] - s[0]).norm(), e1 = (s[2] - s[1]).norm(), e2 = (s[3] - s[2]).norm();
+    EXPECT_NEAR(e0 / e1, 16.0, 2.0) << "k " << k;
+    EXPECT_LT(e2, 2e-11) << "k " << k;
+  }
 }
 
 // Written on the strips of (SE(3) x R^6)^k alone: not on one link's group, nor on k attitudes, nor SO(n).
