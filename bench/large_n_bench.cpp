@@ -47,9 +47,9 @@ void time_solve(benchmark::State& state, const SolveRequest& req, const char* ex
     state.SkipWithError(("N = " + std::to_string(req.problem.n) + " did not converge: " + check.reason).c_str());
     return;
   }
-  if (check.linear_solver != expected_solver) {
+  if (to_string(check.linear_solver) != expected_solver) {
     state.SkipWithError(("expected linear solver " + std::string(expected_solver) + ", got " +
-                         check.linear_solver).c_str());
+                         std::string(to_string(check.linear_solver))).c_str());
     return;
   }
   for (auto _ : state) {
@@ -72,7 +72,7 @@ void time_solve(benchmark::State& state, const SolveRequest& req, const char* ex
 void LargeN_Solve(benchmark::State& state, LinearSolver linear_solver) {
   const int n = static_cast<int>(state.range(0));
   time_solve(state, large_n_request(n, Differential::exact, linear_solver),
-             linear_solver == LinearSolver::lu ? "lu" : "gmres");
+             linear_solver == LinearSolver::lu ? "dense-lu" : "gmres");
 }
 // N = 8 ... 24 as well: where the two linear solvers cross over (compare with kKrylovThreshold).
 BENCHMARK_CAPTURE(LargeN_Solve, lu, LinearSolver::lu)
@@ -83,7 +83,7 @@ BENCHMARK_CAPTURE(LargeN_Solve, gmres, LinearSolver::gmres)
 void PerIteration(benchmark::State& state, Differential differential) {
   const int n = static_cast<int>(state.range(0));
   time_solve(state, large_n_request(n, differential, LinearSolver::auto_select),
-             n > kKrylovThreshold ? "gmres" : "lu");
+             n > kKrylovThreshold ? "gmres" : "dense-lu");
 }
 void per_iteration_sizes(benchmark::internal::Benchmark* b) {
   for (int n : {3, 5, 8, 12, 16, 24, 32, 48, 64, 100}) b->Arg(n);

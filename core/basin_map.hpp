@@ -111,7 +111,7 @@ class BasinMap {
     Slot<G>& slot = slots_[static_cast<std::size_t>(k)];
     slot.status = r.status;
     slot.iterations = r.total_iterations();
-    if (r.status == Status::converged) slot.y = group_.element(r.y);
+    if (r.status == Status::converged) slot.y = typename G::Element(r.y);
     return true;
   }
 

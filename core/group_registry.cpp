@@ -20,6 +20,7 @@ std::vector<std::unique_ptr<GroupFamily>>& families() {
     v.push_back(std::make_unique<FamilyOf<SEFamily>>());
     v.push_back(std::make_unique<FamilyOf<SOxRFamily>>());
     v.push_back(std::make_unique<FamilyOf<SExRFamily>>());
+    v.push_back(std::make_unique<FamilyOf<SExRPowerFamily>>());
     return v;
   }();
   return all;

@@ -26,6 +26,9 @@ class GroupFamily {
   virtual std::string title(int n) const = 0;   // as a title names its member: "SO(3)"
   // The index of the family's one member, if it has only one (SE: 3); validation checks n before anything else.
   virtual std::optional<int> only_index() const = 0;
+  // The largest index the family takes, if it bounds n itself (SExR^k: 128 bodies); validation checks it, and the
+  // server's --max-n cap (meant for SO(N)'s dense N) does not apply to such a family.
+  virtual std::optional<int> max_index() const = 0;
   // The size of its member's matrices (n on SO(n), n + 1 on SE(n)): a request's z and y0 are that square size.
   virtual int matrix_size(int n) const = 0;
   virtual int algebra_dim(int n) const = 0;

@@ -63,8 +63,10 @@ void validate(const IntegrateRequest& req) {
   check_stage_options(req);
   if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
   // An implicit RKMK method's Newton factors its s q x s q stage system densely: as large as the dense Newton
-  // step of a single equation goes (beyond it the time and memory grow as (s q)^3 and (s q)^2).
-  if (integrators::tableau_of(req.integrator).form == integrators::Form::implicit_rkmk && req.problem.n > kKrylovThreshold)
+  // step of a single equation goes (beyond it the time and memory grow as (s q)^3 and (s q)^2). A family that
+  // bounds its index itself (a system of bodies) keeps the stage system sparse.
+  if (integrators::tableau_of(req.integrator).form == integrators::Form::implicit_rkmk &&
+      !req.problem.family().max_index() && req.problem.n > kKrylovThreshold)
     validation::invalid("integrator", std::string(to_string(req.integrator)) +
                                           " solves its coupled stage system densely: n must be at most " +
                                           std::to_string(kKrylovThreshold));

@@ -73,6 +73,9 @@ struct IntegrateResult {
   double mean_iterations = 0;          // total_iterations / steps taken
   std::optional<int> jacobian_evaluations{};  // summed over the steps where counted (StepRecord)
   std::optional<int> factorizations{};
+  // How the Newton systems were factored (the larger kind where a run used two); none for explicit methods and the
+  // fixed point, which solve no linear system.
+  std::optional<Factorization> linear_solver{};
   Eigen::MatrixXd y;                   // final state
   std::vector<Eigen::MatrixXd> frames; // states at evenly spaced steps when frames > 0 (incl. y(0))
   std::vector<double> frame_times;

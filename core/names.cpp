@@ -9,6 +9,7 @@ std::string_view to_string(Method v) { return words(v).api; }
 std::string_view to_string(Differential v) { return words(v).api; }
 std::string_view to_string(Integrator v) { return words(v).api; }
 std::string_view to_string(LinearSolver v) { return words(v).api; }
+std::string_view to_string(Factorization v) { return words(v).api; }
 std::string_view to_string(Stopping v) { return words(v).api; }
 std::string_view to_string(Globalization v) { return words(v).api; }
 std::string_view to_string(Predictor v) { return words(v).api; }

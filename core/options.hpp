@@ -22,6 +22,8 @@ enum class Integrator { implicit_euler, dirk_cg2, rkmk_gauss1, rkmk_gauss2, rkmk
 // How the Newton system is solved: auto picks lu below kKrylovThreshold (solvers/newton_step.hpp) and gmres above;
 // lu assembles the q x q matrix and factors it; gmres applies the differential matrix-free.
 enum class LinearSolver { auto_select, lu, gmres };
+// The factorization a solve or an integration used for its Newton systems (reported as linear_solver).
+enum class Factorization { dense_lu, sparse_lu, gmres };
 // When Version 2 and the fixed point stop: residual = ||f(y_n)|| <= tol with f(y) = log(z^-1 y) - h g(y), as the
 // paper measures every method in section 5; algebra-residual = ||f~(v_n)|| <= tol, the test Version 2 "would
 // normally" use (3.21), blind to log's branch. Version 1 always stops on ||f(y_n)||.
@@ -50,6 +52,7 @@ std::string_view to_string(Method);
 std::string_view to_string(Differential);
 std::string_view to_string(Integrator);
 std::string_view to_string(LinearSolver);
+std::string_view to_string(Factorization);
 std::string_view to_string(Stopping);
 std::string_view to_string(Globalization);
 std::string_view to_string(Predictor);
@@ -73,6 +76,8 @@ inline constexpr Integrator kAllIntegrators[] = {Integrator::implicit_euler, Int
                                                  Integrator::rkmk_radau3,    Integrator::rkmk4,
                                                  Integrator::dirk_cg3,       Integrator::rkmk_lobatto3c};
 inline constexpr LinearSolver kAllLinearSolvers[] = {LinearSolver::auto_select, LinearSolver::lu, LinearSolver::gmres};
+inline constexpr Factorization kAllFactorizations[] = {Factorization::dense_lu, Factorization::sparse_lu,
+                                                       Factorization::gmres};
 inline constexpr Stopping kAllStoppings[] = {Stopping::residual, Stopping::algebra_residual};
 inline constexpr Globalization kAllGlobalizations[] = {Globalization::none, Globalization::line_search,
                                                        Globalization::trust_region};

@@ -38,9 +38,7 @@ class VectorField {
   virtual void set_time(double /*t*/) {}
   // The q x q matrix of dg_y on the coordinate basis; problems with sparse structure override the loop.
   virtual Operator dg_matrix(const G& group, const Element& y) const {
-    Operator m = zero_operator(group);
-    for (int i = 0; i < group.dim(); ++i) m.col(i) = dg(y, basis_vector(group, i));
-    return m;
+    return operator_from_columns(group, [&](const Vector& u) -> Vector { return dg(y, u); });
   }
 };
 
@@ -337,10 +335,9 @@ inline std::optional<int> required_index(ProblemKind kind) {
 }
 // The one group family a problem is written for, if any: heavy-top's and stiff-body's SO(3) x R^3, chain's
 // (SE(3) x R^6)^k (any n = k the family takes).
-inline constexpr const char* kChainGroup = "SExR^k";
 inline std::optional<std::string> required_group(ProblemKind kind) {
   if (on_so3xr3(kind)) return SOxRFamily::kName;
-  if (kind == ProblemKind::chain) return kChainGroup;
+  if (kind == ProblemKind::chain) return SExRPowerFamily::kName;
   return std::nullopt;
 }
 

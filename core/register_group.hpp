@@ -5,6 +5,7 @@
 //     static constexpr const char* kName = "SO";                       // as requests name it
 //     template <class F> static decltype(auto) with_group(int n, F&& f);  // f(the group of index n)
 //     static constexpr int kOnlyIndex = 3;  // optional: the index of its one member (absent: every n is one)
+//     static constexpr int kMaxIndex = 128;  // optional: the largest n it takes (absent: fields::n's bound)
 //   };
 // and each group it hands to f satisfies LieGroup. Registering is one line beside the family:
 //   inline const bool kMyGroupRegistered = register_group<MyFamily>();
@@ -25,6 +26,13 @@ class FamilyOf final : public GroupFamily {
   std::optional<int> only_index() const override {
     if constexpr (requires { Family::kOnlyIndex; }) {
       return Family::kOnlyIndex;
+    } else {
+      return std::nullopt;
+    }
+  }
+  std::optional<int> max_index() const override {
+    if constexpr (requires { Family::kMaxIndex; }) {
+      return Family::kMaxIndex;
     } else {
       return std::nullopt;
     }

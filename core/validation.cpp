@@ -29,6 +29,10 @@ void check_problem_domain(const ProblemSpec& problem) {
   if (const std::optional<int> only = family.only_index(); only && *only != problem.n)
     unprocessable("n", "the group " + problem.group + " has one member, " + family.title(*only) + ": n must be " +
                            std::to_string(*only) + ", got " + std::to_string(problem.n));
+  if (const std::optional<int> max = family.max_index(); max && problem.n > *max)
+    unprocessable("n", "the group " + problem.group + " takes n from " + std::to_string(fields::n.min) + " to " +
+                           std::to_string(*max) + " (" + family.title(*max) + " is the largest), got " +
+                           std::to_string(problem.n));
   if (problem.g) return;  // a user's program is compiled for the request's n on any group (check_user_field)
   const std::string name(to_string(problem.kind));
   const int n = required_index(problem.kind).value_or(problem.n);

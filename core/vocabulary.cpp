@@ -206,11 +206,29 @@ Words words(Integrator i) {
 Words words(LinearSolver s) {
   switch (s) {
     case LinearSolver::auto_select: {
-      static const std::string sentence = "LU up to N = " + std::to_string(kKrylovThreshold) + ", GMRES above";
+      static const std::string sentence =
+          "LU up to N = " + std::to_string(kKrylovThreshold) + ", GMRES above (never by body count: a system of "
+          "bodies is factored by sparse LU)";
       return {"auto", "Automatic", "auto", sentence, {}};
     }
     case LinearSolver::lu: return {"lu", "Dense LU", "LU", "dense LU of the Newton system", {}};
     case LinearSolver::gmres:
+      return {"gmres", "GMRES", "GMRES", "matrix-free GMRES with the Eisenstat–Walker forcing term", {}};
+  }
+  return {};
+}
+
+Words words(Factorization f) {
+  switch (f) {
+    case Factorization::dense_lu:
+      return {"dense-lu", "Dense LU", "dense LU", "dense LU with partial pivoting of the assembled Newton matrix", {}};
+    case Factorization::sparse_lu: {
+      static const std::string sentence =
+          "sparse LU (COLAMD ordering, partial pivoting) of the assembled Newton matrix: systems of bodies with "
+          "more than " + std::to_string(kDenseLuMaxDim) + " unknowns";
+      return {"sparse-lu", "Sparse LU", "sparse LU", sentence, {}};
+    }
+    case Factorization::gmres:
       return {"gmres", "GMRES", "GMRES", "matrix-free GMRES with the Eisenstat–Walker forcing term", {}};
   }
   return {};

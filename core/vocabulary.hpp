@@ -27,6 +27,7 @@ Words words(Method);
 Words words(Differential);
 Words words(Integrator);
 Words words(LinearSolver);
+Words words(Factorization);
 Words words(Stopping);
 Words words(Globalization);
 Words words(Predictor);

@@ -22,10 +22,12 @@
 // Adding a group: see docs/architecture.md ("Where a change goes").
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace lienewton {
 
@@ -74,6 +76,10 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
 template <class G>
 inline constexpr bool kSparseOperator = std::is_base_of_v<Eigen::SparseMatrixBase<typename G::Operator>, typename G::Operator>;
 
+// G's operators at run-time size, for matrices built from them (stage systems): a sparse one stays sparse.
+template <class G>
+using DynamicOperator = std::conditional_t<kSparseOperator<G>, Eigen::SparseMatrix<double>, Eigen::MatrixXd>;
+
 // Coordinates and operators sized by the group (fixed-size types ignore the size arguments).
 template <class G>
 typename G::Vector zero_vector(const G& g) {
@@ -100,6 +106,40 @@ typename G::Operator identity_operator(const G& g) {
     return m;
   } else {
     return G::Operator::Identity(g.dim(), g.dim());
+  }
+}
+
+// The operator whose column i is column(e_i), asked in order i = 0, 1, ..., for differentials known only by their
+// action (difference quotients, a user's df, the default dg_matrix). A sparse operator keeps the columns' nonzeros.
+template <class G, class Column>
+typename G::Operator operator_from_columns(const G& g, Column column) {
+  if constexpr (kSparseOperator<G>) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < g.dim(); ++i) {
+      const typename G::Vector c = column(basis_vector(g, i));
+      for (Eigen::Index r = 0; r < c.size(); ++r)
+        if (c[r] != 0.0) entries.emplace_back(static_cast<int>(r), i, c[r]);
+    }
+    typename G::Operator m(g.dim(), g.dim());
+    m.setFromTriplets(entries.begin(), entries.end());
+    return m;
+  } else {
+    typename G::Operator m = zero_operator(g);
+    for (int i = 0; i < g.dim(); ++i) m.col(i) = column(basis_vector(g, i));
+    return m;
+  }
+}
+
+// Every stored entry finite (a sparse operator's pattern only: its implicit zeros are).
+template <class Op>
+bool operator_all_finite(const Op& m) {
+  if constexpr (std::is_base_of_v<Eigen::SparseMatrixBase<Op>, Op>) {
+    for (Eigen::Index c = 0; c < m.outerSize(); ++c)
+      for (typename Op::InnerIterator it(m, c); it; ++it)
+        if (!std::isfinite(it.value())) return false;
+    return true;
+  } else {
+    return m.allFinite();
   }
 }
 

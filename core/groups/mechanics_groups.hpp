@@ -5,7 +5,7 @@
 // block diagonal, [[R, 0], [0, [[I, w], [0, 1]]]] (7 x 7) and [[T, 0], [0, [[I, v], [0, 1]]]] (11 x 11).
 // SO(3) x SO(3) x R^6, two rigid bodies' rotations and angular velocities (13 x 13), is formed here but has no
 // family yet: registering one compiles every solver on it. (SO(3) x R^3)^k, k rigid bodies for k known at run time
-// (power_group.hpp), has none yet either (docs/many_bodies.md).
+// (power_group.hpp), has none yet; (SE(3) x R^6)^k has SExR^k.
 #include "power_group.hpp"
 #include "product_group.hpp"
 #include "se3_group.hpp"
@@ -28,5 +28,7 @@ static_assert(LieGroup<SE3xR6PowerGroup>);
 
 using SOxRFamily = SingleGroupFamily<"SOxR", SO3xR3Group, 3>;
 using SExRFamily = SingleGroupFamily<"SExR", SE3xR6Group, 3>;
+// k rigid bodies' poses and twists, "group": "SExR^k" with n = k (docs/many_bodies.md).
+using SExRPowerFamily = PowerFamily<"SExR^k", SE3xR6Group, 128>;
 
 }  // namespace lienewton

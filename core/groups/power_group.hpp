@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "lie_group.hpp"
+#include "single_group_family.hpp"
 
 namespace lienewton {
 
@@ -205,6 +206,18 @@ class PowerGroup {
 
   int k_;
   B body_{};
+};
+
+// The family of k bodies of B (register_group.hpp), k = n from 2 to MaxIndex: the Newton matrix is sparse but a
+// result still carries k body matrices per iterate, so k is bounded per family rather than by --max-n.
+template <FamilyName Name, LieGroup B, int MaxIndex>
+struct PowerFamily {
+  static constexpr const char* kName = Name.text;
+  static constexpr int kMaxIndex = MaxIndex;
+  template <class F>
+  static decltype(auto) with_group(int n, F&& f) {
+    return f(PowerGroup<B>(n));
+  }
 };
 
 }  // namespace lienewton

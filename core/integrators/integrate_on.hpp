@@ -49,6 +49,7 @@ class Integration {
     else
       fixed_steps(steps);
     res_.cpu_seconds = thread_cpu_seconds() - cpu_start;
+    res_.linear_solver = stepper_.factorization();
     if (!res_.steps.empty()) res_.mean_iterations = double(res_.total_iterations) / double(res_.steps.size());
     res_.y = group_.matrix(y_);
     res_.initial_invariants = drift_.initial();

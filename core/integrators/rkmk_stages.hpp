@@ -62,6 +62,7 @@ struct StageSolution {
   double contraction = 0;           // the largest ratio of successive corrections of the last solve
   int jacobian_evaluations = 0;     // Newton matrices formed (the caller's decoupled one not counted here)
   int factorizations = 0;
+  std::optional<Factorization> factorization;  // how the Newton matrices were factored, if any was
   double residual() const { return residuals.empty() ? 0.0 : residuals.back(); }
 };
 
@@ -70,6 +71,8 @@ class RkmkStages {
  public:
   using Element = typename G::Element;
   using Vector = typename G::Vector;
+  // The stage system's matrices: sparse for a group with sparse operators (its bodies' couplings kept).
+  using Matrix = DynamicOperator<G>;
 
   struct Evaluation {
     Eigen::VectorXd f;  // F(K), stacked
@@ -96,7 +99,7 @@ class RkmkStages {
   // series) or has Re mu <= 0 (then mu lambda is never real and positive for an eigenvalue lambda of A, whose real
   // part is positive in every implicit tableau here).
   bool linearisation_regular() const {
-    const Eigen::VectorXcd mu = jacobian_at_start().eigenvalues();
+    const Eigen::VectorXcd mu = Eigen::MatrixXd(jacobian_at_start()).eigenvalues();
     const double rho = tab_->a.eigenvalues().cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i < mu.size(); ++i)
       if (h_ * std::abs(mu[i]) * rho >= 1.0 && mu[i].real() > 0.0) return false;
@@ -165,7 +168,7 @@ class RkmkStages {
   }
 
   // The Newton matrix of the differential d at k (see the file comment).
-  Eigen::MatrixXd jacobian(const Eigen::VectorXd& k, const Evaluation& e, Differential d) const {
+  Matrix jacobian(const Eigen::VectorXd& k, const Evaluation& e, Differential d) const {
     if (d == Differential::finite_difference) {
       Eigen::MatrixXd m(size(), size());
       const double step = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, k.norm());
@@ -175,23 +178,46 @@ class RkmkStages {
         kj[j] += step;
         m.col(j) = (evaluate(kj).f - e.f) / step;
       }
-      return m;
+      if constexpr (kSparseOperator<G>) {
+        return m.sparseView();
+      } else {
+        return m;
+      }
     }
-    std::vector<Eigen::MatrixXd> stage_m;
+    std::vector<Matrix> stage_m;
     if (d == Differential::dexpinv_0) {
       field_->set_time(t_);
-      stage_m.assign(static_cast<std::size_t>(tab_->stages()), Eigen::MatrixXd(field_->dg_matrix(group_, y_)));
+      stage_m.assign(static_cast<std::size_t>(tab_->stages()), Matrix(field_->dg_matrix(group_, y_)));
     } else {
       for (int i = 0; i < tab_->stages(); ++i) {
         field_->set_time(t_ + tab_->c(i) * h_);
         stage_m.push_back(d == Differential::dexpinv_1 ? first_order_m(e, i) : exact_m(e, i));
       }
     }
-    Eigen::MatrixXd m = Eigen::MatrixXd::Identity(size(), size());
-    for (int i = 0; i < tab_->stages(); ++i)
-      for (int j = 0; j < tab_->stages(); ++j)
-        m.block(i * q_, j * q_, q_, q_) -= (h_ * tab_->a(i, j)) * stage_m[static_cast<std::size_t>(i)];
-    return m;
+    if constexpr (kSparseOperator<G>) {
+      // I - h A (x) M_i, block by block from the M_i's nonzeros (duplicates summed).
+      std::vector<Eigen::Triplet<double>> entries;
+      for (int r = 0; r < size(); ++r) entries.emplace_back(r, r, 1.0);
+      for (int i = 0; i < tab_->stages(); ++i)
+        for (int j = 0; j < tab_->stages(); ++j) {
+          const double c = h_ * tab_->a(i, j);
+          if (c == 0.0) continue;
+          const Matrix& mi = stage_m[static_cast<std::size_t>(i)];
+          for (Eigen::Index col = 0; col < mi.outerSize(); ++col)
+            for (typename Matrix::InnerIterator it(mi, col); it; ++it)
+              entries.emplace_back(static_cast<int>(i * q_ + it.row()), static_cast<int>(j * q_ + it.col()),
+                                   -c * it.value());
+        }
+      Matrix m(size(), size());
+      m.setFromTriplets(entries.begin(), entries.end());
+      return m;
+    } else {
+      Eigen::MatrixXd m = Eigen::MatrixXd::Identity(size(), size());
+      for (int i = 0; i < tab_->stages(); ++i)
+        for (int j = 0; j < tab_->stages(); ++j)
+          m.block(i * q_, j * q_, q_, q_) -= (h_ * tab_->a(i, j)) * stage_m[static_cast<std::size_t>(i)];
+      return m;
+    }
   }
 
   // The request's method from k: Newton (the Jacobian of d, frozen per solve for dexpinv-0/1; with `simplified`, its
@@ -205,7 +231,7 @@ class RkmkStages {
     const bool decoupled = newton && simplified && d == Differential::dexpinv_0;
     const double contraction = newton ? kMaxContraction : kFixedPointContraction;
     const double kappa = stiffness();
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    detail::NewtonLu<double> lu;
     double previous = std::numeric_limits<double>::infinity();
     for (int n = 0;; ++n) {
       throw_if_cancelled();
@@ -234,8 +260,9 @@ class RkmkStages {
         if (!frozen || n == 0) {
           ++out.jacobian_evaluations;
           ++out.factorizations;
-          lu.compute(jacobian(k, e, d));
-          if (!detail::well_conditioned(lu)) {
+          const bool regular = lu.factorize(jacobian(k, e, d));
+          out.factorization = lu.factorization();
+          if (!regular) {
             out.status = Status::singular_differential;
             out.reason = "the stage system's Newton matrix is singular";
             break;
@@ -269,36 +296,45 @@ class RkmkStages {
 
   // M_i of the exact Jacobian: d/dTheta of sum beta_k ad_Theta^k(w) is sum beta_k sum_m ad^m ad_delta ad^(k-1-m) w,
   // and ad_delta x = -ad_x delta.
-  Eigen::MatrixXd exact_m(const Evaluation& e, int i) const {
+  Matrix exact_m(const Evaluation& e, int i) const {
     const Vector& th = e.theta[static_cast<std::size_t>(i)];
     const Vector& w = e.w[static_cast<std::size_t>(i)];
-    const Eigen::MatrixXd ad = Eigen::MatrixXd(group_.ad_matrix(th));
+    const Matrix ad = Matrix(group_.ad_matrix(th));
     const int q = tab_->dexpinv_degree();
-    std::vector<Eigen::MatrixXd> ad_pow{Eigen::MatrixXd::Identity(q_, q_)};
+    std::vector<Matrix> ad_pow{identity()};
     std::vector<Vector> ad_w{w};  // ad^j w
     for (int j = 1; j <= q; ++j) {
       ad_pow.push_back(ad * ad_pow.back());
       ad_w.push_back(group_.bracket(th, ad_w.back()));
     }
-    Eigen::MatrixXd op = Eigen::MatrixXd::Identity(q_, q_), d_theta = Eigen::MatrixXd::Zero(q_, q_);
+    Matrix op = identity(), d_theta = Matrix(identity() * 0.0);
     for (int k = 1; k <= q; ++k) {
       const double beta = coefficient(k);
       if (beta == 0.0) continue;
       op += beta * ad_pow[static_cast<std::size_t>(k)];
       for (int m = 0; m < k; ++m)
-        d_theta -= beta * ad_pow[static_cast<std::size_t>(m)] *
-                   Eigen::MatrixXd(group_.ad_matrix(ad_w[static_cast<std::size_t>(k - 1 - m)]));
+        d_theta -= beta * Matrix(ad_pow[static_cast<std::size_t>(m)] *
+                                 Matrix(group_.ad_matrix(ad_w[static_cast<std::size_t>(k - 1 - m)])));
     }
-    const Eigen::MatrixXd dg = Eigen::MatrixXd(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
-    return d_theta + op * dg * Eigen::MatrixXd(group_.dexp_matrix(group_.spectral(th)));
+    const Matrix dg = Matrix(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
+    return d_theta + Matrix(Matrix(op * dg) * Matrix(group_.dexp_matrix(group_.spectral(th))));
   }
 
   // M_i with dexpinv ~ I + ad/2 (3.11) and dexp ~ I - ad/2 (3.17): -ad_w/2 + (I + ad/2) dg (I - ad/2).
-  Eigen::MatrixXd first_order_m(const Evaluation& e, int i) const {
-    const Eigen::MatrixXd half_ad = 0.5 * Eigen::MatrixXd(group_.ad_matrix(e.theta[static_cast<std::size_t>(i)]));
-    const Eigen::MatrixXd id = Eigen::MatrixXd::Identity(q_, q_);
-    const Eigen::MatrixXd dg = Eigen::MatrixXd(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
-    return -0.5 * Eigen::MatrixXd(group_.ad_matrix(e.w[static_cast<std::size_t>(i)])) + (id + half_ad) * dg * (id - half_ad);
+  Matrix first_order_m(const Evaluation& e, int i) const {
+    const Matrix half_ad = 0.5 * Matrix(group_.ad_matrix(e.theta[static_cast<std::size_t>(i)]));
+    const Matrix dg = Matrix(field_->dg_matrix(group_, e.y[static_cast<std::size_t>(i)]));
+    const Matrix left = identity() + half_ad, right = identity() - half_ad;
+    return -0.5 * Matrix(group_.ad_matrix(e.w[static_cast<std::size_t>(i)])) + Matrix(Matrix(left * dg) * right);
+  }
+  Matrix identity() const {
+    if constexpr (kSparseOperator<G>) {
+      Matrix m(q_, q_);
+      m.setIdentity();
+      return m;
+    } else {
+      return Matrix::Identity(q_, q_);
+    }
   }
 
   // The rounding floor of h ||F||: 64 eps sqrt(sq) (1 + ||Theta|| + h ||w||) (1 + kappa), kappa = stiffness():
@@ -316,14 +352,14 @@ class RkmkStages {
   double t_, h_;
   int q_;
   // dg_{y_k}, evaluated once per step: every solve's floor reads it.
-  const Eigen::MatrixXd& jacobian_at_start() const {
+  const Matrix& jacobian_at_start() const {
     if (!jacobian_at_start_) {
       field_->set_time(t_);
-      jacobian_at_start_ = Eigen::MatrixXd(field_->dg_matrix(group_, y_));
+      jacobian_at_start_ = Matrix(field_->dg_matrix(group_, y_));
     }
     return *jacobian_at_start_;
   }
-  mutable std::optional<Eigen::MatrixXd> jacobian_at_start_;
+  mutable std::optional<Matrix> jacobian_at_start_;
 };
 
 // The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0),
@@ -347,6 +383,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     return first;
   }
   int spent = first.iterations, jacobians = first.jacobian_evaluations, factorizations = first.factorizations;
+  std::optional<Factorization> factored = first.factorization;
   SolverOptions corrector = opt;  // the path's points need not be solved to the request's tol, only its end
   corrector.max_iterations = kMaxCorrectorIterations;
   corrector.tol = std::max(opt.tol, kPathTolerance);
@@ -361,6 +398,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     spent += c.iterations;
     jacobians += c.jacobian_evaluations;
     factorizations += c.factorizations;
+    factored = widest(factored, c.factorization);
     const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
     if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move)) {
       slope = (c.k - k) / (next - tau);
@@ -375,6 +413,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     first.iterations = spent;
     first.jacobian_evaluations = jacobians;
     first.factorizations = factorizations;
+    first.factorization = factored;
     first.reason = "the stages' branch from h = 0 could not be followed past h = " + format_number(tau) +
                    " (a fold, or too stiff a turn); the method from its start: " + first.reason;
     if (first.status == Status::converged) first.status = Status::fold;
@@ -384,6 +423,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   last.iterations += spent;
   last.jacobian_evaluations += jacobians;
   last.factorizations += factorizations;
+  last.factorization = widest(last.factorization, factored);
   const Eigen::VectorXd theta = sys.thetas(k);
   last.continued = last.status == Status::converged &&
                    (sys.thetas(last.k) - theta).norm() <= 1e-6 * (1.0 + theta.norm());

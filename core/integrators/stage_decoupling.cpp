@@ -42,26 +42,47 @@ StageDecoupling decoupling_of(const Tableau& tab) {
   return d;
 }
 
-bool DecoupledNewtonMatrix::factorize(double h, const Eigen::MatrixXd& j) {
+namespace {
+
+// lambda I - h J in J's form (dense or sparse), real or complex.
+Eigen::MatrixXd shifted(double lambda, double h, const Eigen::MatrixXd& j) {
+  return lambda * Eigen::MatrixXd::Identity(j.rows(), j.cols()) - h * j;
+}
+Eigen::MatrixXcd shifted(std::complex<double> lambda, double h, const Eigen::MatrixXd& j) {
+  return lambda * Eigen::MatrixXcd::Identity(j.rows(), j.cols()) - h * j.cast<std::complex<double>>();
+}
+template <class Scalar>
+Eigen::SparseMatrix<Scalar> shifted(Scalar lambda, double h, const Eigen::SparseMatrix<double>& j) {
+  Eigen::SparseMatrix<Scalar> id(j.rows(), j.cols());
+  id.setIdentity();
+  return Eigen::SparseMatrix<Scalar>(lambda * id - Scalar(h) * j.cast<Scalar>());
+}
+
+}  // namespace
+
+bool DecoupledNewtonMatrix::factorize(double h, const Eigen::MatrixXd& j) { return factorize_blocks(h, j); }
+bool DecoupledNewtonMatrix::factorize(double h, const Eigen::SparseMatrix<double>& j) {
+  return factorize_blocks(h, j);
+}
+
+template <class Matrix>
+bool DecoupledNewtonMatrix::factorize_blocks(double h, const Matrix& j) {
   h_ = h;
-  real_.clear();
-  complex_.clear();
-  const Eigen::Index q = j.rows();
+  std::size_t pairs = 0;
+  for (bool p : d_.pair) pairs += p;
+  // Kept, not rebuilt: each block's sparse analysis survives its refactorizations.
+  real_.resize(d_.lambda.size() - pairs);
+  complex_.resize(pairs);
   bool ok = true;
+  std::size_t real = 0, complex = 0;
   for (std::size_t m = 0; m < d_.lambda.size(); ++m) {
-    if (d_.pair[m]) {
-      complex_.emplace_back(Eigen::MatrixXcd(d_.lambda[m] * Eigen::MatrixXcd::Identity(q, q) -
-                                             h * j.cast<std::complex<double>>()));
-      ok = ok && detail::well_conditioned(complex_.back());
-    } else {
-      real_.emplace_back(d_.lambda[m].real() * Eigen::MatrixXd::Identity(q, q) - h * j);
-      ok = ok && detail::well_conditioned(real_.back());
-    }
+    if (d_.pair[m])
+      ok = complex_[complex++].factorize(shifted(d_.lambda[m], h, j)) && ok;
+    else
+      ok = real_[real++].factorize(shifted(d_.lambda[m].real(), h, j)) && ok;
   }
-  if (d_.real_block < 0) {
-    filter_.compute(Eigen::MatrixXd::Identity(q, q) - (h * d_.gamma0) * j);
-    ok = ok && detail::well_conditioned(filter_);
-  }
+  if (d_.real_block < 0) ok = filter_.factorize(shifted(1.0, h * d_.gamma0, j)) && ok;
+  factorization_ = real_.empty() ? complex_.front().factorization() : real_.front().factorization();
   return ok;
 }
 

@@ -9,9 +9,11 @@
 // is the conjugate, and dK takes twice the real part. Radau IIA and Gauss with 3 stages: one real and one complex
 // q x q LU instead of a 3q x 3q one.
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <vector>
 
+#include "core/solvers/newton_step.hpp"
 #include "tableau.hpp"
 
 namespace lienewton::integrators {
@@ -35,22 +37,30 @@ class DecoupledNewtonMatrix {
  public:
   explicit DecoupledNewtonMatrix(const Tableau& tab) : tab_(&tab), d_(decoupling_of(tab)) {}
 
-  // Factors lambda_m I - h J for every block; false when one is singular.
+  // Factors lambda_m I - h J for every block; false when one is singular. A sparse J (a system of bodies) keeps
+  // the blocks sparse (sparse LU above kDenseLuMaxDim), each block's analysis reused across factorizations.
   bool factorize(double h, const Eigen::MatrixXd& j);
+  bool factorize(double h, const Eigen::SparseMatrix<double>& j);
   // dK of (I - h A (x) J) dK = r, r and dK the stacked stages.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
   // (I - h gamma0 J)^-1 x: the embedded estimate's filter.
   Eigen::VectorXd filter(const Eigen::VectorXd& x) const;
   const StageDecoupling& decoupling() const { return d_; }
   double h() const { return h_; }
+  // How the blocks were last factored.
+  Factorization factorization() const { return factorization_; }
 
  private:
+  template <class Matrix>
+  bool factorize_blocks(double h, const Matrix& j);
+
   const Tableau* tab_;
   StageDecoupling d_;
   double h_ = 0;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> real_;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> complex_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> filter_;  // where gamma0 has no real block of its own
+  std::vector<detail::NewtonLu<double>> real_;
+  std::vector<detail::NewtonLu<std::complex<double>>> complex_;
+  detail::NewtonLu<double> filter_;  // where gamma0 has no real block of its own
+  Factorization factorization_ = Factorization::dense_lu;
 };
 
 }  // namespace lienewton::integrators

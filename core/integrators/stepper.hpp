@@ -76,15 +76,17 @@ class Stepper {
   }
   // What the last failing step ran into.
   const std::string& failure() const { return failure_; }
+  // How the largest Newton systems solved so far were factored (none before any was).
+  std::optional<Factorization> factorization() const { return factorization_; }
 
   // Whether a step of dt from y at t is stiff: a component of the linearisation decays within it, h (-Re mu) > 1
   // for an eigenvalue mu of dg_y. Step doubling's estimate then misjudges (order reduction) and the embedded one is
   // filtered for it; a fast rotation (the heavy top's spin, Re mu ~ 0) is not stiff.
   bool stiff(const Element& y, double t, double dt) const {
     field_->set_time(t);
-    const Eigen::MatrixXd j(field_->dg_matrix(group_, y));
+    const DynamicOperator<G> j(field_->dg_matrix(group_, y));
     if (dt * j.norm() <= 1.0) return false;  // |mu| <= ||dg||_F: no eigenvalue to look for
-    return dt * -j.eigenvalues().real().minCoeff() > 1.0;
+    return dt * -Eigen::MatrixXd(j).eigenvalues().real().minCoeff() > 1.0;
   }
   // Whether take() can give an embedded error estimate (implicit RKMK methods), and its order s.
   bool estimates_error() const { return weights_.has_value(); }
@@ -119,6 +121,7 @@ class Stepper {
       const auto eq = Equation<G>::implicit_euler(group_, z, dt * tab_->a(i, i), *field_);
       const SolveResult stage = continued_root(opt_.method, eq, opt_, {}, predictor_ == Predictor::none);
       rec.iterations += stage.total_iterations();
+      if (opt_.method != Method::fixed_point) used(stage.linear_solver);
       rec.residual = std::max(rec.residual, stage.residual);
       // A stage at its rounding floor (stagnated: tol is below what double resolves at this h, as on a stiff
       // field) is solved as well as it can be; the implicit RKMK stages stop at the same floor (rkmk_stages.hpp).
@@ -127,7 +130,7 @@ class Stepper {
         failure_ = "stage " + std::to_string(i + 1) + " (h = " + format_number(dt) + "): " + stage.reason;
         return std::nullopt;
       }
-      last_stage = group_.element(stage.y);
+      last_stage = Element(stage.y);
       hg.push_back(dt * field_->g(last_stage));
     }
     // A stiffly accurate tableau's exp-products of the b_i are Y_s: taking Y_s saves s products and their
@@ -159,6 +162,7 @@ class Stepper {
     }
     rec.iterations += stages.iterations;
     rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
+    if (stages.factorization) used(*stages.factorization);
     rec.residual = std::max(rec.residual, stages.residual());
     reuse_jacobian_ = simplified && stages.continued && stages.contraction <= kReuseContraction;
     if (!stages.continued) {
@@ -179,7 +183,7 @@ class Stepper {
   }
   void refresh_matrix(const Element& y, double t, double dt, StepRecord& rec) {
     field_->set_time(t);
-    jacobian_ = Eigen::MatrixXd(field_->dg_matrix(group_, y));
+    jacobian_ = DynamicOperator<G>(field_->dg_matrix(group_, y));
     rec.add_matrices(1, 0);
     jacobian_fresh_ = true;
     factorize(dt, rec);
@@ -187,7 +191,9 @@ class Stepper {
   void factorize(double dt, StepRecord& rec) {
     matrix_->factorize(dt, *jacobian_);
     rec.add_matrices(0, 1);
+    used(matrix_->factorization());
   }
+  void used(Factorization f) { factorization_ = widest(factorization_, f); }
   // The estimate's filter (I - h gamma0 J)^-1 with J = dg at this step's start, unless the simplified Newton's kept
   // one is already factored at dt (any J near dg_{y_k} filters; Radau5 uses its Newton matrix's).
   void prepare_filter(const Element& y, double t, double dt, StepRecord& rec) {
@@ -220,10 +226,11 @@ class Stepper {
   // through a later point too: adaptive steps take the whole step after its two halves).
   std::optional<std::pair<double, Vector>> previous_;
   std::string failure_;
+  std::optional<Factorization> factorization_;
   // Implicit RKMK methods: the decoupled Newton matrix (also the estimate's filter), its J and whether it may be
   // kept, and the embedded estimate's weights and last step.
   std::optional<DecoupledNewtonMatrix> matrix_;
-  std::optional<Eigen::MatrixXd> jacobian_;
+  std::optional<DynamicOperator<G>> jacobian_;
   bool jacobian_fresh_ = false, reuse_jacobian_ = false;
   std::optional<EmbeddedWeights> weights_;
   struct LastStep {

@@ -383,7 +383,7 @@ class BranchPath {
   SolveResult at_point(const Point& x, Status status) const {
     SolveResult r;
     r.status = status;
-    r.y = group_.matrix(group_.times_exp(eq_.z(), x.v));
+    r.y = group_.times_exp(eq_.z(), x.v);  // an Element, as the solvers' y (requests_on_group.hpp converts)
     const auto p = eq_.at(Element(r.y), Equation<G>::Need::residual);
     r.residual = p.in_domain ? p.residual : std::numeric_limits<double>::quiet_NaN();
     r.orthogonality_error = group_.defect(Element(r.y));

@@ -159,15 +159,13 @@ class Equation {
   // plus dg's matrix; differences perturb y by exp(t b_i), a plane rotation on SO(N).
   Operator df_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
-      Operator m = zero_operator(group_);
       const double t = difference_step(p, basis_vector(group_, 0));
-      for (int i = 0; i < group_.dim(); ++i) {
+      return operator_from_columns(group_, [&](const Vector& b) -> Vector {
         throw_if_cancelled();  // q columns of exp and log: seconds for large N
-        const Point q = at(group_.times_exp(p.y, t * basis_vector(group_, i)), Need::residual);
+        const Point q = at(group_.times_exp(p.y, t * b), Need::residual);
         if (!q.in_domain) throw_crossed_log_boundary(q.angle);
-        m.col(i) = (q.f - p.f) / t;
-      }
-      return m;
+        return (q.f - p.f) / t;
+      });
     }
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, u); });
     const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
@@ -195,13 +193,11 @@ class Equation {
   // The q x q matrix of df~_v on the basis.
   Operator dftilde_matrix(const Point& p, Differential d) const {
     if (d == Differential::finite_difference) {
-      Operator m = zero_operator(group_);
       const double t = difference_step(p, basis_vector(group_, 0));
-      for (int i = 0; i < group_.dim(); ++i) {
+      return operator_from_columns(group_, [&](const Vector& b) -> Vector {
         throw_if_cancelled();
-        m.col(i) = (at_algebra(p.v + t * basis_vector(group_, i), Need::residual).f - p.f) / t;
-      }
-      return m;
+        return (at_algebra(p.v + t * b, Need::residual).f - p.f) / t;
+      });
     }
     if (!field_) return columns([&](const Vector& u) { return df_(p.y, group_.dexp(p.v_form, u)); });
     const Operator hdg = h_ * field_->dg_matrix(group_, p.y);
@@ -308,9 +304,7 @@ class Equation {
 
   template <class Apply>
   Operator columns(Apply apply) const {
-    Operator m = zero_operator(group_);
-    for (int i = 0; i < group_.dim(); ++i) m.col(i) = apply(basis_vector(group_, i));
-    return m;
+    return operator_from_columns(group_, [&](const Vector& b) -> Vector { return apply(b); });
   }
 
   [[noreturn]] static void throw_crossed_log_boundary(double angle) {

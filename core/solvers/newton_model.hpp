@@ -7,6 +7,7 @@
 //   LM        (D^T D + mu I) s = -D^T f (Levenberg-Marquardt): always a descent direction, defined when D is singular
 // D is assembled lazily: a Krylov Newton step (large N) needs only products D w.
 #include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -51,9 +52,16 @@ class NewtonModel {
   }
   // (D^T D + mu I) s = -D^T f; mu > 0 makes the matrix positive definite.
   Vector levenberg_marquardt(double mu) {
-    Operator a = matrix().transpose() * matrix();
-    a.diagonal().array() += mu;
-    return -a.ldlt().solve(gradient());
+    if constexpr (kSparseOperator<G>) {
+      Operator shift(matrix().cols(), matrix().cols());
+      shift.setIdentity();
+      const Operator a = Operator(matrix().transpose() * matrix()) + mu * shift;
+      return -Eigen::SimplicialLDLT<Operator>(a).solve(gradient());
+    } else {
+      Operator a = matrix().transpose() * matrix();
+      a.diagonal().array() += mu;
+      return -a.ldlt().solve(gradient());
+    }
   }
   // D s, from the assembled matrix when there is one.
   Vector product(const Vector& s) const { return d_ ? Vector(*d_ * s) : chart_.apply(p_, s); }

@@ -1,12 +1,18 @@
 #pragma once
 // The Newton step both Newton versions share: D u = -f with D the differential of (3.5) or (3.20), assembled on
 // the coordinate basis and solved by LU with partial pivoting (its reciprocal condition number checked first:
-// singular_differential), or for large N applied matrix-free inside GMRES.
+// singular_differential), or for large N applied matrix-free inside GMRES. A group with sparse operators (a system
+// of bodies) keeps the matrix sparse and factors it with SparseLU, or densely when it is small.
 #include <Eigen/LU>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include "core/gmres.hpp"
+#include "core/groups/lie_group.hpp"
 #include "core/status.hpp"
 #include "factored_operator.hpp"
 #include "iteration_monitor.hpp"
@@ -18,12 +24,39 @@ namespace lienewton {
 inline constexpr int kKrylovThreshold = 16;
 inline constexpr int kMaxKrylovIterations = 300;
 
+// A sparse Newton matrix of at most this dimension is factored dense. Measured on bench/sparse_lu_bench.cpp's
+// block-tridiagonal matrices (12 x 12 blocks, CPU time of factor + solve): 96 unknowns dense 24 us, sparse 39 us
+// (51 us with its rcond estimate); 144: 66 / 61 (80); 192: 141 / 79 (102). Dense up to 12 bodies of SE(3) x R^6.
+inline constexpr int kDenseLuMaxDim = 144;
+// The bound in force on this thread: kDenseLuMaxDim, unless a test moves it to compare both paths on one system.
+inline int& dense_lu_max_dim() {
+  thread_local int bound = kDenseLuMaxDim;
+  return bound;
+}
+
+// Of two factorizations used in one run, the one reported: of the larger kind (dense LU < sparse LU < GMRES), as a
+// step may factor small decoupled blocks densely and its whole stage system sparse.
+inline std::optional<Factorization> widest(std::optional<Factorization> a, std::optional<Factorization> b) {
+  if (!a) return b;
+  if (!b) return a;
+  return static_cast<int>(*a) >= static_cast<int>(*b) ? a : b;
+}
+
 namespace detail {
 
+// The auto rule is for dense operators, whose assembly and LU grow like dim^3 (SO(N) above N = 16). A sparse
+// operator's LU grows like its nonzeros (k bodies: O(k)), so the body count never picks GMRES; asked, it runs.
 template <class G>
 bool use_krylov(const G& group, LinearSolver choice) {
-  if (choice == LinearSolver::auto_select) return group.n() > kKrylovThreshold;
+  if (choice == LinearSolver::auto_select) return !kSparseOperator<G> && group.n() > kKrylovThreshold;
   return choice == LinearSolver::gmres;
+}
+
+// The factorization newton_step uses for a Newton matrix of this dimension (the one reported as linear_solver).
+template <class G>
+Factorization factorization_for(bool krylov, int dim) {
+  if (krylov) return Factorization::gmres;
+  return kSparseOperator<G> && dim > dense_lu_max_dim() ? Factorization::sparse_lu : Factorization::dense_lu;
 }
 
 enum class StepOutcome { ok, singular, non_finite };
@@ -37,6 +70,93 @@ bool well_conditioned(const Lu& lu) {
   if (pivots.minCoeff() > 1e-6 * pivots.maxCoeff()) return true;
   return lu.rcond() >= kSingularRcond;
 }
+
+// SparseLU keeps no cheap pivot list: its reciprocal condition number is estimated as Eigen's dense LUs do
+// (Hager/Higham, a few solves), through a view whose adjoint() is const as that estimator needs.
+template <class Lu>
+struct ConstLuView {
+  using MatrixType = typename Lu::MatrixType;
+  using Scalar = typename Lu::Scalar;
+  using RealScalar = typename Lu::RealScalar;
+  Lu* lu;
+  Eigen::Index rows() const { return lu->rows(); }
+  Eigen::Index cols() const { return lu->cols(); }
+  template <class Rhs>
+  auto solve(const Rhs& b) const {
+    return lu->solve(b);
+  }
+  auto adjoint() const { return lu->adjoint(); }
+};
+template <class Scalar>
+bool well_conditioned_sparse(Eigen::SparseLU<Eigen::SparseMatrix<Scalar>>& lu, const Eigen::SparseMatrix<Scalar>& a) {
+  if (lu.info() != Eigen::Success) return false;
+  double norm1 = 0.0;
+  for (Eigen::Index c = 0; c < a.outerSize(); ++c) norm1 = std::max(norm1, a.col(c).cwiseAbs().sum());
+  const ConstLuView<Eigen::SparseLU<Eigen::SparseMatrix<Scalar>>> view{&lu};
+  return Eigen::internal::rcond_estimate_helper(norm1, view) >= kSingularRcond;
+}
+
+// SparseLU whose symbolic analysis (COLAMD ordering, elimination tree) is kept while the pattern repeats: a
+// Newton iteration's matrices, and a step's after it, share one pattern.
+template <class Scalar>
+class SparseNewtonLu {
+ public:
+  using Matrix = Eigen::SparseMatrix<Scalar>;
+  // Factors a; false when it is singular to kSingularRcond.
+  bool factorize(Matrix a) {
+    a.makeCompressed();
+    if (!same_pattern(a)) {
+      lu_->analyzePattern(a);
+      outer_.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1);
+      inner_.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+    }
+    lu_->factorize(a);
+    return well_conditioned_sparse(*lu_, a);
+  }
+  template <class Rhs>
+  auto solve(const Rhs& b) const {
+    return lu_->solve(b);
+  }
+
+ private:
+  bool same_pattern(const Matrix& a) const {
+    return static_cast<std::size_t>(a.outerSize() + 1) == outer_.size() &&
+           std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
+           static_cast<std::size_t>(a.nonZeros()) == inner_.size() &&
+           std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
+  }
+  // Behind a pointer: SparseLU cannot be moved, and its owners are kept in vectors.
+  std::unique_ptr<Eigen::SparseLU<Matrix>> lu_ = std::make_unique<Eigen::SparseLU<Matrix>>();
+  std::vector<typename Matrix::StorageIndex> outer_, inner_;
+};
+
+// One Newton matrix's LU: dense, or sparse (SparseNewtonLu) for a sparse matrix above kDenseLuMaxDim. Kept by its
+// owner across factorizations, so that the sparse analysis is reused.
+template <class Scalar>
+class NewtonLu {
+ public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Sparse = Eigen::SparseMatrix<Scalar>;
+  // false when a is singular to kSingularRcond.
+  bool factorize(const Dense& a) {
+    sparse_ = false;
+    dense_.compute(a);
+    return well_conditioned(dense_);
+  }
+  bool factorize(const Sparse& a) {
+    if (a.rows() <= dense_lu_max_dim()) return factorize(Dense(a));
+    sparse_ = true;
+    return sparse_lu_.factorize(a);
+  }
+  Vector solve(const Vector& b) const { return sparse_ ? Vector(sparse_lu_.solve(b)) : Vector(dense_.solve(b)); }
+  Factorization factorization() const { return sparse_ ? Factorization::sparse_lu : Factorization::dense_lu; }
+
+ private:
+  bool sparse_ = false;
+  Eigen::PartialPivLU<Dense> dense_;
+  SparseNewtonLu<Scalar> sparse_lu_;
+};
 
 // Solves D u = -f for the Newton step, D = A P^T given by `assemble` (dense LU of A with partial pivoting, refused
 // when its reciprocal condition number is below kSingularRcond) or, matrix-free, by `apply` inside GMRES with the
@@ -56,10 +176,17 @@ StepOutcome newton_step(bool krylov, const Assemble& assemble, const Apply& appl
     return StepOutcome::ok;
   }
   const FactoredOperator<typename G::Operator> d = assemble();
-  if (!d.a.allFinite()) return StepOutcome::non_finite;
-  const Eigen::PartialPivLU<typename G::Operator> lu(d.a);
-  if (!well_conditioned(lu)) return StepOutcome::singular;
-  u = -lu.solve(f);
+  if (!operator_all_finite(d.a)) return StepOutcome::non_finite;
+  if constexpr (kSparseOperator<G>) {
+    // One per thread, so that a solve's iterations (one request runs on one thread) share the sparse analysis.
+    thread_local NewtonLu<double> lu;
+    if (!lu.factorize(d.a)) return StepOutcome::singular;
+    u = -lu.solve(f);
+  } else {
+    const Eigen::PartialPivLU<typename G::Operator> lu(d.a);
+    if (!well_conditioned(lu)) return StepOutcome::singular;
+    u = -lu.solve(f);
+  }
   if (d.basis) u = *d.basis * u;
   return StepOutcome::ok;
 }

@@ -24,4 +24,5 @@ LIENEWTON_SOLVERS_ON(extern, SONGroup)
 LIENEWTON_SOLVERS_ON(extern, SE3Group)
 LIENEWTON_SOLVERS_ON(extern, SO3xR3Group)
 LIENEWTON_SOLVERS_ON(extern, SE3xR6Group)
+LIENEWTON_SOLVERS_ON(extern, SE3xR6PowerGroup)
 }  // namespace lienewton

@@ -67,7 +67,7 @@ struct SolveResult {
   std::vector<TraceRecord> trace;
   double seconds = 0;           // wall time
   double cpu_seconds = 0;       // the solver's own CPU time (thread CPU time, callbacks excluded; 0 untimed)
-  std::string linear_solver;    // "lu" (dense, assembled) or "gmres" (matrix-free, large N)
+  Factorization linear_solver = Factorization::dense_lu;  // how its Newton systems were solved
   // Which root y is, and which search found it (core/options.hpp).
   Branch branch = Branch::unchecked;
   Search found_by = Search::plain;

@@ -19,6 +19,7 @@
 
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
+#include "newton_step.hpp"
 #include "solve_result.hpp"
 
 namespace lienewton {
@@ -99,7 +100,7 @@ class SolverRun {
     res.orthogonality_error = eq_.group().defect(it.y);
     res.z_adjustment = eq_.z_adjustment();
     res.reorthogonalisations = projections_;
-    res.linear_solver = krylov_ ? "gmres" : "lu";
+    res.linear_solver = detail::factorization_for<G>(krylov_, eq_.group().dim());
     res.reason = reason_for(status, res, G::kAngleName, G::kLogBoundaryName);
     if (dipped)
       res.reason = "stagnated at the rounding floor " + format_number(res.floor) + ": ||f(y)|| = " +

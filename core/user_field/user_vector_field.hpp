@@ -51,12 +51,11 @@ class UserVectorField final : public VectorField<G> {
     thread_local Eigen::MatrixXd dgs, block;
     program_->eval_along(as_matrix(y), t_, basis_, dgs);
     const Eigen::Index n = program_->n();
-    typename G::Operator m = zero_operator(group);
-    for (int i = 0; i < group.dim(); ++i) {
-      block = dgs.middleRows(i * n, n);
-      m.col(i) = in_algebra(block);
-    }
-    return m;
+    Eigen::Index i = 0;  // operator_from_columns asks for the columns in order
+    return operator_from_columns(group, [&](const Vector&) -> Vector {
+      block = dgs.middleRows(n * i++, n);
+      return in_algebra(block);
+    });
   }
   // The first value found off the algebra (its defect; 0 while none was).
   double defect() const { return defect_.load(); }

@@ -16,7 +16,8 @@ namespace {
 using G = SO3xR3PowerGroup;
 using Body = SO3xR3Group;
 
-Body::Element body_block(const Eigen::MatrixXd& y, int i) { return y.block<7, 7>(7 * i, 7 * i); }
+// Body i of an element (the strip of body matrices, as the solvers return it).
+Body::Element body_block(const Eigen::MatrixXd& y, int i) { return y.middleCols<7>(7 * i); }
 
 // Every body moved by one body field on its own block: dg is block diagonal.
 class EveryBody final : public VectorField<G> {

@@ -37,13 +37,16 @@ Eigen::VectorXd coordinates(const std::vector<double>& angles, std::mt19937_64& 
 }
 
 Body::Vector part(const Eigen::VectorXd& v, int i) { return v.segment<6>(6 * i); }
+Eigen::MatrixXd dense(const G::Operator& m) { return Eigen::MatrixXd(m); }
 
 TEST(PowerGroup, ShapeAndNameFollowTheBody) {
   const G g(8);
   EXPECT_EQ(g.name(), "(SO(3)xR^3)^8");
   EXPECT_EQ(g.n(), 8);
   EXPECT_EQ(g.dim(), 48);
-  EXPECT_EQ(g.identity().rows(), 56);
+  EXPECT_EQ(g.identity().rows(), 7);
+  EXPECT_EQ(g.identity().cols(), 56);
+  EXPECT_EQ(g.matrix(g.identity()), Eigen::MatrixXd::Identity(56, 56));
   EXPECT_EQ(G::kAlgebraDimension, "6k");
   EXPECT_EQ(G::kLogRadius, kPi);
   EXPECT_EQ(std::string(G::kAngleName), "rotation angle");
@@ -60,9 +63,11 @@ TEST(PowerGroup, EveryBlockIsTheBodys) {
   const Eigen::VectorXd v = coordinates(angles, rng), u = coordinates({0.3, 0.3, 0.3, 0.3, 0.3}, rng);
   const G::Element y = g.exp(v);
   const G::Spectral s = g.spectral(v);
-  const G::Operator dexp = g.dexp_matrix(s), dexpinv = g.dexpinv_matrix(s), ad = g.ad_matrix(v);
-  G::Element expected_y = G::Element::Zero(35, 35);
-  G::Operator expected_dexp = G::Operator::Zero(30, 30), expected_dexpinv = expected_dexp, expected_ad = expected_dexp;
+  const Eigen::MatrixXd dexp = dense(g.dexp_matrix(s)), dexpinv = dense(g.dexpinv_matrix(s)),
+                        ad = dense(g.ad_matrix(v));
+  Eigen::MatrixXd expected_y = Eigen::MatrixXd::Zero(35, 35);
+  Eigen::MatrixXd expected_dexp = Eigen::MatrixXd::Zero(30, 30), expected_dexpinv = expected_dexp,
+                  expected_ad = expected_dexp;
   for (int i = 0; i < 5; ++i) {
     const auto si = body.spectral(part(v, i));
     expected_y.block<7, 7>(7 * i, 7 * i) = body.exp(part(v, i));
@@ -73,10 +78,12 @@ TEST(PowerGroup, EveryBlockIsTheBodys) {
     EXPECT_EQ(part(g.dexpinv(s, u), i), body.dexpinv(si, part(u, i))) << "body " << i;
     EXPECT_EQ(part(g.bracket(v, u), i), body.bracket(part(v, i), part(u, i))) << "body " << i;
   }
-  EXPECT_EQ(y, expected_y);
+  EXPECT_EQ(g.matrix(y), expected_y);
+  EXPECT_EQ(g.element(expected_y), y);
   EXPECT_EQ(dexp, expected_dexp);
   EXPECT_EQ(dexpinv, expected_dexpinv);
   EXPECT_EQ(ad, expected_ad);
+  EXPECT_LE(g.dexp_matrix(s).nonZeros(), 5 * 36);  // the sparse pattern holds the blocks alone
 
   double angle = -1.0;
   const Eigen::VectorXd back = g.log_vector(y, angle);
@@ -98,8 +105,8 @@ TEST(PowerGroup, DexpInvertsDexpinvAndVeeInvertsHat) {
                                              std::vector<double>{1e-12, 1e-6, 0.1, 1.0, 3.0, kPi - 1e-9}}) {
     const Eigen::VectorXd v = coordinates(angles, rng);
     const G::Spectral s = g.spectral(v);
-    const G::Operator product = g.dexp_matrix(s) * g.dexpinv_matrix(s);
-    EXPECT_LE((product - G::Operator::Identity(36, 36)).norm(), 16 * g.n() * kEps);
+    const Eigen::MatrixXd product = dense(g.dexp_matrix(s) * g.dexpinv_matrix(s));
+    EXPECT_LE((product - Eigen::MatrixXd::Identity(36, 36)).norm(), 16 * g.n() * kEps);
     EXPECT_EQ(g.vee(g.hat(v)), v);
   }
 }
@@ -115,20 +122,21 @@ TEST(PowerGroup, AgreesWithTheProductOfItsBodies) {
     const Eigen::VectorXd v = coordinates({0.1 * trial, 3.0 - 0.3 * trial, 1.0}, rng);
     const Eigen::VectorXd u = coordinates({0.5, 0.5, 0.5}, rng);
     const Three::Vector pv = v, pu = u;
-    EXPECT_EQ(g.exp(v), p.exp(pv));
-    EXPECT_EQ(g.times_exp(g.exp(u), v), p.times_exp(p.exp(pu), pv));
-    EXPECT_EQ(g.dexpinv_matrix(g.spectral(v)), p.dexpinv_matrix(p.spectral(pv)));
-    EXPECT_EQ(g.dexp_matrix(g.spectral(v)), p.dexp_matrix(p.spectral(pv)));
+    EXPECT_EQ(g.matrix(g.exp(v)), p.exp(pv));
+    EXPECT_EQ(g.matrix(g.times_exp(g.exp(u), v)), p.times_exp(p.exp(pu), pv));
+    EXPECT_EQ(dense(g.dexpinv_matrix(g.spectral(v))), p.dexpinv_matrix(p.spectral(pv)));
+    EXPECT_EQ(dense(g.dexp_matrix(g.spectral(v))), p.dexp_matrix(p.spectral(pv)));
     EXPECT_EQ(g.vector(g.log(g.exp(v))), p.vector(p.log(p.exp(pv))));
     EXPECT_EQ(g.angle(g.spectral(v)), p.angle(p.spectral(pv)));
-    const Eigen::MatrixXd y = g.exp(v), w = g.hat(u);
-    EXPECT_EQ(g.tangent(y, w), p.tangent(y, w));
-    EXPECT_EQ(g.compose(y, g.inverse(y)), p.compose(y, p.inverse(y)));
-    // The off-diagonal entries are summed in another grouping (by block rows, not strips beside and below).
-    const Eigen::MatrixXd off = y + 1e-3 * w;
-    EXPECT_NEAR(g.defect(off), p.defect(off), 4 * kEps * p.defect(off));
+    const G::Element y = g.exp(v), w = g.hat(u);
+    const Eigen::MatrixXd py = g.matrix(y), pw = g.matrix(w);
+    EXPECT_EQ(g.matrix(g.tangent(y, w)), p.tangent(py, pw));
+    EXPECT_EQ(g.matrix(g.compose(y, g.inverse(y))), p.compose(py, p.inverse(py)));
+    // The bodies' defects only (a strip has nothing off the blocks), summed in another grouping.
+    const G::Element off = y + 1e-3 * w;
+    EXPECT_NEAR(g.defect(off), p.defect(g.matrix(off)), 4 * kEps * p.defect(g.matrix(off)));
   }
-  for (std::uint64_t seed : {1u, 99u}) EXPECT_EQ(g.random(seed), p.random(seed)) << "seed " << seed;
+  for (std::uint64_t seed : {1u, 99u}) EXPECT_EQ(g.matrix(g.random(seed)), p.random(seed)) << "seed " << seed;
 }
 
 // One body is the body group itself.
@@ -137,9 +145,9 @@ TEST(PowerGroup, OneBodyIsTheBodyGroup) {
   const Body body;
   std::mt19937_64 rng(1);
   const Eigen::VectorXd v = coordinates({2.0}, rng);
-  EXPECT_EQ(g.exp(v), Eigen::MatrixXd(body.exp(v)));
-  EXPECT_EQ(g.random(7), Eigen::MatrixXd(body.random(7)));
-  EXPECT_EQ(g.dexpinv_matrix(g.spectral(v)), Eigen::MatrixXd(body.dexpinv_matrix(body.spectral(v))));
+  EXPECT_EQ(g.matrix(g.exp(v)), Eigen::MatrixXd(body.exp(v)));
+  EXPECT_EQ(g.matrix(g.random(7)), Eigen::MatrixXd(body.random(7)));
+  EXPECT_EQ(dense(g.dexpinv_matrix(g.spectral(v))), Eigen::MatrixXd(body.dexpinv_matrix(body.spectral(v))));
 }
 
 // A request's matrix: accepted when block diagonal with bodies for blocks; an entry coupling two bodies, or one
@@ -147,7 +155,7 @@ TEST(PowerGroup, OneBodyIsTheBodyGroup) {
 // (det -1 against det +1) is unreachable, naming the body.
 TEST(PowerGroup, MembershipNamesTheBody) {
   const G g(4);
-  const Eigen::MatrixXd z = g.random(3);
+  const Eigen::MatrixXd z = g.matrix(g.random(3));
   EXPECT_EQ(g.not_an_element(z, "z"), "");
   Eigen::MatrixXd coupled = z;
   coupled(2, 20) = 1e-3;
@@ -160,8 +168,8 @@ TEST(PowerGroup, MembershipNamesTheBody) {
   flipped.block<3, 3>(7, 7) = -flipped.block<3, 3>(7, 7);
   EXPECT_EQ(g.not_reachable(z, z), "");
   EXPECT_EQ(g.not_reachable(flipped, z).rfind("body 2: ", 0), 0u) << g.not_reachable(flipped, z);
-  EXPECT_GT(g.defect(coupled), 0.9e-3);
-  EXPECT_LE(g.defect(g.project(coupled)), 16 * g.n() * kEps);
+  EXPECT_GT(g.defect(g.element(skewed)), 0.9e-3);
+  EXPECT_LE(g.defect(g.project(g.element(skewed))), 16 * g.n() * kEps);
 }
 
 }  // namespace
