@@ -58,7 +58,8 @@ inline Vec field(ProblemKind kind, const Mat& y) {
     case ProblemKind::paper_sine: return vee(PaperSine{}.g(y));
     case ProblemKind::rigid_body: return vee(Mat(RigidBody{}.g(y)));
     case ProblemKind::heavy_top:
-    case ProblemKind::stiff_body: break;  // fields on SO(3) x R^3, not on this baseline's SO(N)
+    case ProblemKind::stiff_body:
+    case ProblemKind::chain: break;  // fields on SO(3) x R^3 and (SE(3) x R^6)^k, not on this baseline's SO(N)
   }
   return {};
 }

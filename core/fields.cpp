@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <numbers>
 
 #include "basins.hpp"
 #include "group_registry.hpp"
@@ -107,7 +108,7 @@ Field array(Field item, std::size_t min_items, std::size_t max_items, std::strin
 
 std::string text(int x) { return std::to_string(x); }
 
-// Three numbers of a problem's parameters P (heavy-top's, stiff-body's): the codec reads finite numbers, core
+// Three numbers of a problem's parameters P (heavy-top's, stiff-body's, chain's): the codec reads finite numbers, core
 // validation refuses the rest with 422 (the schema's bounds, P::kBound).
 template <class P>
 Field three_numbers(const char* name, Eigen::Vector3d P::*member, const std::string& description, bool positive) {
@@ -163,6 +164,14 @@ std::vector<Field> build() {
   Field stiff_rotation{.name = "rotation", .type = Type::matrix, .lands = {&StiffBodyParams::rotation},
                        .description = "R(0), a 3 x 3 rotation (orthogonal to 1e-10, det +1; default "
                                       "exp(hat([0.5, -0.3, 0.8])))"};
+  const ChainParams chain;
+  // One number of chain's parameters, its schema bounds [lo, kBound] ((lo, kBound] when positive) and default.
+  const auto chain_number = [&](const char* name, double ChainParams::*member, const std::string& description,
+                                double lo, bool positive) {
+    return Field{.name = name, .type = Type::number, .lands = {member}, .description = description,
+                 .exclusive_minimum = positive, .schema_minimum = lo,
+                 .schema_maximum = lo < 0.0 ? -lo : ChainParams::kBound, .default_value = chain.*member};
+  };
   Field seed{.name = "seed", .type = Type::integer, .routes = kProblemRoutes, .lands = {&ProblemSpec::seed},
              .description = "unsigned 64-bit seed of the random start point", .minimum = 0.0,
              .maximum = static_cast<double>(std::numeric_limits<std::uint64_t>::max()), .default_value = 1LL};
@@ -200,7 +209,7 @@ std::vector<Field> build() {
                                    "(w, r, v); SExR^k: (SE(3) x R^6)^k, k = n rigid bodies (n from 2 to 128, "
                                    "\"SExR^8\" is short for n = 8), z = diag(y1, ..., yk) of SExR's 11 x 11 blocks, "
                                    "coordinates body by body. The built-in problems are defined on SO, heavy-top and "
-                                   "stiff-body on SOxR; g (your own field) on every group",
+                                   "stiff-body on SOxR, chain on SExR^k; g (your own field) on every group",
                     .values = registered_group_names(), .default_value = std::string("SO")});
   t.push_back(integer(n, solve | integrate | work_precision, {&ProblemSpec::n}, Cap::n));
   t.push_back(basin_n);
@@ -237,6 +246,25 @@ std::vector<Field> build() {
                                    stiff_rotation,
                                    three_numbers("omega", &StiffBodyParams::omega, "omega(0): body angular velocity",
                                                  false)}});
+  t.push_back(Field{
+      .name = "chain", .type = Type::object, .routes = kProblemRoutes, .lands = {&ProblemSpec::chain},
+      .description = "chain only: the links' mass, inertia and length, the joints' spring and damper, gravity, and "
+                     "the start's tilt (the chain straight and at rest, turned by tilt about x from hanging along "
+                     "-z), which replaces z; absent ones keep their defaults. n is the number of links",
+      .schema = "Chain",
+      .properties = {chain_number("mass", &ChainParams::mass, "m: each link's mass", 0.0, true),
+                     three_numbers("inertia", &ChainParams::inertia,
+                                   "J: each link's principal moments about its centre (positive; its joints sit on "
+                                   "its z axis)",
+                                   true),
+                     chain_number("length", &ChainParams::length, "L: joint to joint, the joints at (0, 0, +-L/2)",
+                                  0.0, true),
+                     chain_number("stiffness", &ChainParams::stiffness, "k_s: each joint's spring", 0.0, false),
+                     chain_number("damping", &ChainParams::damping,
+                                  "c: each joint's damper (the energy is an invariant at c = 0 only)", 0.0, false),
+                     three_numbers("gravity", &ChainParams::gravity, "gamma: gravity in space", false),
+                     chain_number("tilt", &ChainParams::tilt, "the start's angle about x from hanging down (rad)",
+                                  -std::numbers::pi, false)}});
   t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text));
   t.push_back(enumeration("differential", kAllDifferentials, solve | sweep | integrate | basins,
                           {&SolverOptions::differential}, differential_text));

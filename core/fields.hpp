@@ -20,6 +20,7 @@
 #include "rigid_body_params.hpp"
 #include "shard.hpp"
 #include "stiff_body_params.hpp"
+#include "chain_params.hpp"
 #include "user_field/program.hpp"
 
 namespace lienewton {
@@ -138,7 +139,8 @@ using Member = std::variant<
     Eigen::Vector3d RigidBodyParams::*, int Shard::*, HeavyTopParams ProblemSpec::*, double HeavyTopParams::*,
     Eigen::Vector3d HeavyTopParams::*, Eigen::Matrix3d HeavyTopParams::*, StiffBodyParams ProblemSpec::*,
     double StiffBodyParams::*, std::optional<double> StiffBodyParams::*, Eigen::Vector3d StiffBodyParams::*,
-    Eigen::Matrix3d StiffBodyParams::*>;
+    Eigen::Matrix3d StiffBodyParams::*, ChainParams ProblemSpec::*, double ChainParams::*,
+    Eigen::Vector3d ChainParams::*>;
 
 using Default = std::variant<std::monostate, double, long long, bool, std::string>;
 
@@ -162,7 +164,8 @@ struct Field {
   std::size_t min_items = 0, max_items = 0;
   Cap cap_items = Cap::none;
   std::string items{};
-  std::string schema{};                         // object: the named schema it is published as (RigidBody, HeavyTop, StiffBody)
+  // object: the named schema it is published as (RigidBody, HeavyTop, StiffBody, Chain)
+  std::string schema{};
   std::vector<Field> properties{};              // object: its fields
   std::vector<std::string> required{};          // object: the fields it needs
 

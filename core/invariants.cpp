@@ -15,7 +15,8 @@ bool InvariantValues::any() const {
 std::span<const Invariant> invariants_of(ProblemKind kind) {
   static constexpr Invariant kEnergy[] = {Invariant::energy};
   switch (kind) {
-    case ProblemKind::rigid_body: return kEnergy;
+    case ProblemKind::rigid_body:
+    case ProblemKind::chain: return kEnergy;  // the chain's at damping 0 only (has_invariants)
     case ProblemKind::heavy_top: return kAllInvariants;
     case ProblemKind::paper_linear:
     case ProblemKind::paper_sine:
@@ -24,7 +25,11 @@ std::span<const Invariant> invariants_of(ProblemKind kind) {
   return {};
 }
 
-bool has_invariants(const ProblemSpec& problem) { return !problem.g && !invariants_of(problem.kind).empty(); }
+// A damped chain loses energy (dE/dt = -c sum |d_j'|^2): nothing it reports would be conserved.
+bool has_invariants(const ProblemSpec& problem) {
+  if (problem.is(ProblemKind::chain) && problem.chain.damping != 0.0) return false;
+  return !problem.g && !invariants_of(problem.kind).empty();
+}
 
 InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd& y) {
   InvariantValues out;
@@ -35,6 +40,8 @@ InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd&
     out[Invariant::energy] = top.energy(y);
     out[Invariant::vertical_momentum] = top.vertical_momentum(y);
     if (const auto k = top.symmetry_axis()) out[Invariant::axial_spin] = so3xr3::omega(y)(*k);
+  } else if (problem.is(ProblemKind::chain)) {
+    out[Invariant::energy] = Chain{problem.chain}.energy(Chain::Group(problem.n).element(y));
   }
   return out;
 }
@@ -48,6 +55,8 @@ InvariantValues invariant_scales(const ProblemSpec& problem, const Eigen::Matrix
     out[Invariant::energy] = top.energy_scale(y);
     out[Invariant::vertical_momentum] = top.momentum_scale(y);
     if (out[Invariant::axial_spin]) out[Invariant::axial_spin] = so3xr3::omega(y).norm();
+  } else if (problem.is(ProblemKind::chain)) {
+    out[Invariant::energy] = Chain{problem.chain}.energy_scale(Chain::Group(problem.n).element(y));
   }
   return out;
 }

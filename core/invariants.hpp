@@ -23,14 +23,16 @@ struct InvariantValues {
 };
 
 // The invariants a built-in problem reports: rigid-body its energy; heavy-top its energy, vertical angular
-// momentum and (a Lagrange top) its axial spin; the paper's problems and stiff-body none (nor does a user's g).
+// momentum and (a Lagrange top) its axial spin; chain its energy when undamped (c = 0; has_invariants says so for a
+// request); the paper's problems and stiff-body none (nor does a user's g).
 std::span<const Invariant> invariants_of(ProblemKind kind);
 bool has_invariants(const ProblemSpec& problem);
 InvariantValues invariants_at(const ProblemSpec& problem, const Eigen::MatrixXd& y);
 
 // The size each invariant's drift is relative to, at the start y: one that means something even where the
 // invariant itself is near 0 (a heavy top's vertical momentum): the rigid body's energy; the heavy top's kinetic
-// plus potential energy size, its whole angular momentum |J w|, and |w| for the axial spin (words(Invariant)).
+// plus potential energy size, its whole angular momentum |J w|, and |w| for the axial spin; the chain's kinetic,
+// springs' and gravity's sizes summed (Chain::energy_scale) (words(Invariant)).
 InvariantValues invariant_scales(const ProblemSpec& problem, const Eigen::MatrixXd& y);
 
 // The drift of each invariant along a run: max_k |I(y_k) - I(y_0)| / scale (invariant_scales; 1 where it is 0).

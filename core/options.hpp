@@ -6,7 +6,7 @@
 
 namespace lienewton {
 
-enum class ProblemKind { paper_linear, paper_sine, rigid_body, heavy_top, stiff_body };
+enum class ProblemKind { paper_linear, paper_sine, rigid_body, heavy_top, stiff_body, chain };
 // The conserved quantities a built-in problem reports along an integration (core/invariants.hpp).
 enum class Invariant { energy, vertical_momentum, axial_spin };
 // fixed-point (1.2); newton-group = Version 1 (3.5); newton-algebra = Version 2 (3.20)
@@ -65,7 +65,7 @@ std::optional<Differential> differential_from_string(std::string_view);
 
 inline constexpr ProblemKind kAllProblems[] = {ProblemKind::paper_linear, ProblemKind::paper_sine,
                                                ProblemKind::rigid_body, ProblemKind::heavy_top,
-                                               ProblemKind::stiff_body};
+                                               ProblemKind::stiff_body, ProblemKind::chain};
 inline constexpr Invariant kAllInvariants[] = {Invariant::energy, Invariant::vertical_momentum, Invariant::axial_spin};
 inline constexpr Method kAllMethods[] = {Method::fixed_point, Method::newton_group, Method::newton_algebra};
 inline constexpr Differential kAllDifferentials[] = {Differential::finite_difference, Differential::dexpinv_0,

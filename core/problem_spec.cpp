@@ -12,6 +12,7 @@ Eigen::MatrixXd ProblemSpec::start() const {
   if (z) return *z;
   if (is(ProblemKind::heavy_top)) return HeavyTop{heavy_top}.start();
   if (is(ProblemKind::stiff_body)) return StiffBody{stiff_body}.start();
+  if (is(ProblemKind::chain)) return Chain{chain}.start(n);
   return resolved->seeded_start(family(), n, seed);
 }
 
@@ -28,6 +29,7 @@ void validate(const ProblemSpec& problem, int threads) {
   validation::check_rigid_body(problem.rigid_body);
   validation::check_heavy_top(problem);
   validation::check_stiff_body(problem);
+  validation::check_chain(problem);
   validation::check_start_point(problem);
   validation::check_user_field(problem, threads);
 }

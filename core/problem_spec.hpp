@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "chain_params.hpp"
 #include "heavy_top_params.hpp"
 #include "options.hpp"
 #include "program_cache.hpp"
@@ -22,11 +23,12 @@ struct ProblemSpec {
   int n = 3;
   std::uint64_t seed = 1;
   // start point; when absent, the group's random element from seed (heavy-top, stiff-body: the state of their
-  // parameters' rotation and omega, which give their start instead of z)
+  // parameters' rotation and omega, which give their start instead of z; chain: its straight start at chain.tilt)
   std::optional<Eigen::MatrixXd> z{};
   RigidBodyParams rigid_body{};
   HeavyTopParams heavy_top{};
   StiffBodyParams stiff_body{};
+  ChainParams chain{};
   // The user's own field g(y) as a program (user_field/program.hpp), used instead of kind; the named numbers and
   // matrices it reads.
   std::optional<std::string> g{};
@@ -47,7 +49,7 @@ struct ProblemSpec {
   // The family `group` names (from `resolved`); throws RequestError naming group when none is registered.
   const GroupFamily& family() const { return resolved->family(group); }
 
-  // z, or heavy-top's or stiff-body's start, or the seeded random start point when z is absent.
+  // z, or heavy-top's, stiff-body's or chain's start, or the seeded random start point when z is absent.
   Eigen::MatrixXd start() const;
 };
 

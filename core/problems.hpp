@@ -11,6 +11,7 @@
 #include <string>
 #include <type_traits>
 
+#include "chain.hpp"
 #include "groups/mechanics_groups.hpp"
 #include "groups/so3_group.hpp"
 #include "groups/son_group.hpp"
@@ -301,7 +302,7 @@ class VectorFieldOf final : public VectorField<G> {
 // The groups each problem is defined on (validate() checks before make_field). The paper's problems are matrix
 // formulas with skew values: defined on every group of n x n matrices whose algebra holds the skew matrices
 // (hat(vee(S)) = S for a skew S). rigid-body's formulas are 3 x 3 rotations': SO(3) alone; heavy-top's and
-// stiff-body's the 7 x 7 states of SO(3) x R^3.
+// stiff-body's the 7 x 7 states of SO(3) x R^3; chain's the strips of (SE(3) x R^6)^k (chain.hpp).
 template <class G>
 bool algebra_holds_skew_matrices(const G& group) {
   Eigen::MatrixXd s = group.matrix(group.identity());
@@ -318,10 +319,13 @@ inline constexpr bool kTakesRigidBody =
 inline bool on_so3xr3(ProblemKind kind) {
   return kind == ProblemKind::heavy_top || kind == ProblemKind::stiff_body;
 }
+// The problems whose parameters give their start, never z: the two on SO(3) x R^3 and the chain.
+inline bool starts_from_parameters(ProblemKind kind) { return on_so3xr3(kind) || kind == ProblemKind::chain; }
 template <class G>
 bool defined_on(ProblemKind kind, const G& group) {
   if (kind == ProblemKind::rigid_body) return std::is_same_v<G, SO3Group>;
   if (on_so3xr3(kind)) return std::is_same_v<G, SO3xR3Group>;
+  if (kind == ProblemKind::chain) return std::is_same_v<G, SE3xR6PowerGroup>;
   return algebra_holds_skew_matrices(group);
 }
 // The one n a problem is written for, if any: rigid-body's, heavy-top's and stiff-body's 3 (their group's index).
@@ -329,16 +333,19 @@ inline std::optional<int> required_index(ProblemKind kind) {
   if (kind == ProblemKind::rigid_body || on_so3xr3(kind)) return 3;
   return std::nullopt;
 }
-// The one group family a problem is written for, if any: heavy-top's and stiff-body's SO(3) x R^3.
+// The one group family a problem is written for, if any: heavy-top's and stiff-body's SO(3) x R^3, chain's
+// (SE(3) x R^6)^k (any n = k the family takes).
 inline std::optional<std::string> required_group(ProblemKind kind) {
   if (on_so3xr3(kind)) return SOxRFamily::kName;
+  if (kind == ProblemKind::chain) return SExRPowerFamily::kName;
   return std::nullopt;
 }
 
 // The field of a request's problem on group G (one it is defined_on; validate() checks).
 template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, const RigidBodyParams& rb,
-                                           const HeavyTopParams& top = {}, const StiffBodyParams& stiff = {}) {
+                                           const HeavyTopParams& top = {}, const StiffBodyParams& stiff = {},
+                                           const ChainParams& chain = {}) {
   switch (kind) {
     case ProblemKind::paper_linear: return std::make_unique<VectorFieldOf<G, PaperLinear>>(group, PaperLinear{});
     case ProblemKind::paper_sine: return std::make_unique<VectorFieldOf<G, PaperSine>>(group, PaperSine{});
@@ -352,6 +359,10 @@ std::unique_ptr<VectorField<G>> make_field(const G& group, ProblemKind kind, con
     case ProblemKind::stiff_body:
       if constexpr (std::is_same_v<G, SO3xR3Group>)
         return std::make_unique<VectorFieldOf<G, StiffBody>>(group, StiffBody{stiff});
+      break;
+    case ProblemKind::chain:
+      if constexpr (std::is_same_v<G, SE3xR6PowerGroup>)
+        return std::make_unique<VectorFieldOf<G, Chain>>(group, Chain{chain});
       break;
   }
   return nullptr;

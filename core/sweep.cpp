@@ -145,8 +145,8 @@ SweepResult sweep_validated(const SweepRequest& request, const CellCallback& on_
   std::vector<ProblemSpec> problems;  // one per N, its z shared by all methods and h: the paper's setup
   for (int n : req.n) {
     problems.push_back(at_dimension(req.problem, n));
-    // heavy-top's and stiff-body's start is their parameters' state, which they refuse to be given again as z.
-    if (problems.back().g || !on_so3xr3(problems.back().kind)) problems.back().z = problems.back().start();
+    // heavy-top's, stiff-body's and chain's start is their parameters' state, which they refuse to be given as z.
+    if (problems.back().g || !starts_from_parameters(problems.back().kind)) problems.back().z = problems.back().start();
   }
 
   const std::size_t per_method = req.n.size() * req.h.size();

@@ -3,7 +3,7 @@
 // coordinates (the speed of the flow and how fast g itself changes: the rigid body's ~1, the heavy top's spin of
 // 150 rad/s and its nutation, a stiff field's -1e4), and the default step sizes of a work-precision diagram taken
 // from it, so that every integrator starts inside its asymptotic regime (h rho <= 1) instead of at steps that turn
-// the state by many radians.
+// the state by many radians. The chain has its own (Chain::rate: its joints' and swing's rates).
 #include <vector>
 
 #include "problem_spec.hpp"

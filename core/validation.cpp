@@ -1,6 +1,7 @@
 #include "validation.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "group_registry.hpp"
@@ -109,6 +110,27 @@ void check_stiff_body(const ProblemSpec& problem) {
   check_rotation(p.rotation, "stiff_body.rotation");
   check_vector(p.omega, bound, "stiff_body.omega");
   refuse_z(problem, ProblemKind::stiff_body, "stiff_body");
+}
+
+void check_chain(const ProblemSpec& problem) {
+  const ChainParams& p = problem.chain;
+  constexpr double bound = ChainParams::kBound;
+  const std::string text = fields::format_bound(bound);
+  using Named = std::pair<const char*, double>;
+  for (const auto& [name, x] : {Named{"mass", p.mass}, Named{"length", p.length}})
+    if (!(x > 0.0 && x <= bound))
+      unprocessable(std::string("chain.") + name, std::string("chain.") + name + " must be a finite number in (0, " +
+                                                      text + "]");
+  for (const auto& [name, x] : {Named{"stiffness", p.stiffness}, Named{"damping", p.damping}})
+    if (!(x >= 0.0 && x <= bound))
+      unprocessable(std::string("chain.") + name, std::string("chain.") + name + " must be a finite number in [0, " +
+                                                      text + "]");
+  check_moments(p.inertia, bound, "chain.inertia");
+  check_vector(p.gravity, bound, "chain.gravity");
+  if (!(std::abs(p.tilt) <= std::numbers::pi))
+    unprocessable("chain.tilt", "chain.tilt must be a finite angle in [-pi, pi] (radians)");
+  if (problem.is(ProblemKind::chain) && problem.z)
+    unprocessable("z", "chain starts straight and at rest, turned by chain.tilt: give that instead of z");
 }
 
 void check_workspace(const ProblemSpec& problem, int threads) {

@@ -34,6 +34,9 @@ void check_heavy_top(const ProblemSpec& problem);
 // stiff_body's parameters (422 naming e.g. stiff_body.k): k positive, c (when given) non-negative, J positive, every
 // number finite and at most StiffBodyParams::kBound in size, rotation a rotation; and no z for stiff-body.
 void check_stiff_body(const ProblemSpec& problem);
+// chain's parameters (422 naming e.g. chain.length): mass, length and inertia positive, stiffness and damping
+// non-negative, every number finite and at most ChainParams::kBound in size, |tilt| <= pi; and no z for chain.
+void check_chain(const ProblemSpec& problem);
 // A user's program g: parameters well-named and finite, the program compiled for n (RequestError with its line
 // and column), its workspace on `threads` threads within user_field::kMaxWorkspaceBytes (413 naming g), g(z) in
 // the group's algebra; parameters without g are refused.

@@ -51,6 +51,19 @@ Words words(ProblemKind p) {
               "exp(hat(0.5, −0.3, 0.8)), ω(0) = (1, −2, 0.5): the damper's eigenvalues are about −c/Jᵢ (−10⁴, "
               "−5·10³, −3.3·10³) against the slow part's ~1, the stiff benchmark of the implicit integrators. "
               "Forced and damped, it conserves nothing: it reports no invariants."};
+    case ProblemKind::chain:
+      return {"chain", "chain (k links, stiff damped joints, (SE(3)×R⁶)^k)", "chain",
+              "k rigid links on (SE(3)×R⁶)^k hanging from a fixed point, joined by stiff springs and dampers",
+              "A chain of k = n equal rigid links (not in the paper): link i's pose (Rᵢ, xᵢ) and body twist (ωᵢ, vᵢ) "
+              "on SE(3)×R⁶ (group SExR^k, 11k×11k block-diagonal matrices), Rᵢ′ = Rᵢ·ω̂ᵢ, xᵢ′ = Rᵢvᵢ, m vᵢ′ = "
+              "m vᵢ×ωᵢ + Rᵢᵀ(Fᵢ + mγ), Jωᵢ′ = (Jωᵢ)×ωᵢ + Σ a×(RᵢᵀF_a). The first link's top point hangs from "
+              "the origin, each link's bottom point (0, 0, −L/2) is joined to the next one's top point (0, 0, "
+              "L/2) by a penalty spherical joint: the force −k_s d − c d′ on the gap d between the two points. "
+              "Defaults m = 1, L = 0.5, J = a rod of radius 0.05 (diag(0.02146, 0.02146, 0.00125)), γ = (0, 0, "
+              "−9.81), k_s = 10⁵, c = 200, starting straight and at rest, turned by tilt = 0.6 rad about x from "
+              "hanging down: a joint's period ≈ 0.02 s against the swing's ≈ 1.2 s and more, the stiff and damped "
+              "regime of the implicit integrators. Its energy Σ ½m|vᵢ|² + ½ωᵢᵀJωᵢ − mγᵀxᵢ + Σ ½k_s|d_j|² "
+              "decays as −c Σ|d_j′|²: reported as an invariant at c = 0 only."};
   }
   return {};
 }
@@ -58,11 +71,12 @@ Words words(ProblemKind p) {
 Words words(Invariant i) {
   switch (i) {
     case Invariant::energy:
-      return {"energy", "Energy", "energy", "the energy, kinetic (and potential, heavy top)",
+      return {"energy", "Energy", "energy", "the energy, kinetic (and potential, heavy top and chain)",
               "The total energy of the state: ½ MᵀI⁻¹M, M = yᵀm, for the rigid body; ½ωᵀJω − m γᵀRχ for the "
-              "heavy top (J about the pivot). Evaluated from each returned state y, not from the integrator's "
-              "stages. Its drift is relative to the rigid body's energy, or to the heavy top's kinetic plus "
-              "potential size ½ω₀ᵀJω₀ + m|γ||χ| (energy_scale)."};
+              "heavy top (J about the pivot); Σ ½m|vᵢ|² + ½ωᵢᵀJωᵢ − mγᵀxᵢ + Σ ½k_s|d_j|² for the undamped chain. "
+              "Evaluated from each returned state y, not from the integrator's stages. Its drift is relative to "
+              "the rigid body's energy, to the heavy top's kinetic plus potential size ½ω₀ᵀJω₀ + m|γ||χ|, or to "
+              "the chain's kinetic, springs' and m|γ||xᵢ| sizes summed (energy_scale)."};
     case Invariant::vertical_momentum:
       return {"vertical_momentum", "Vertical angular momentum", "vertical momentum",
               "the angular momentum about the vertical, e₃ᵀRJω (heavy top)",

@@ -354,8 +354,8 @@ json schemas() {
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_residuals))}};
   s["RenderInvariantsRequest"] = json{
-      {"description", "An IntegrateRequest of a problem with invariants (rigid-body, heavy-top; else 422 naming "
-                      "problem) plus width/height (default " + size_text(kInvariantsFigure) + "). One line per "
+      {"description", "An IntegrateRequest of a problem with invariants (rigid-body, heavy-top, chain at damping 0; "
+                      "else 422 naming problem) plus width/height (default " + size_text(kInvariantsFigure) + "). One line per "
                       "invariant: |I(y_k) - I(y_0)| / |I(y_0)| against the step k, log scale; a run that does not converge: 422."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_invariants))}};

@@ -461,8 +461,8 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
   before_work(hooks);
   validate(r);
   if (!has_invariants(r.problem))
-    throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body and "
-                                                    "heavy-top do)");
+    throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body, "
+                                                    "heavy-top and chain at damping 0 do)");
   bool stopped = false;
   const IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });

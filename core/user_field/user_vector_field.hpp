@@ -90,7 +90,8 @@ template <class G>
 std::unique_ptr<VectorField<G>> make_field(const G& group, const ProblemSpec& problem) {
   if (problem.g)
     return std::make_unique<UserVectorField<G>>(group, problem.program());
-  return make_field(group, problem.kind, problem.rigid_body, problem.heavy_top, problem.stiff_body);
+  return make_field(group, problem.kind, problem.rigid_body, problem.heavy_top, problem.stiff_body,
+                    problem.chain);
 }
 
 // Why a run of the user's field stopped as non_finite, when a value left the algebra: names g, the iteration

@@ -58,6 +58,10 @@ test::MatrixField field_of(const ProblemSpec& p) {
     case ProblemKind::heavy_top: return [top = HeavyTop{p.heavy_top}](const Eigen::MatrixXd& y) { return top.g(y); };
     case ProblemKind::stiff_body:
       return [body = StiffBody{p.stiff_body}](const Eigen::MatrixXd& y) { return body.g(y); };
+    case ProblemKind::chain:
+      return [chain = Chain{p.chain}, group = Chain::Group(p.n)](const Eigen::MatrixXd& y) {
+        return group.matrix(chain.g(group.element(y)));
+      };
   }
   return {};
 }
