@@ -20,6 +20,14 @@ namespace lienewton {
 
 // One registered family of groups, indexed by n, with every request it answers; n is valid (fields::n) and the
 // matrices have been checked for shape and membership before these are called.
+// Rows and columns of a group's matrices.
+struct MatrixShape {
+  int rows, cols;
+  bool square() const { return rows == cols; }
+  std::string text() const { return std::to_string(rows) + " x " + std::to_string(cols); }  // "11 x 88"
+  friend bool operator==(const MatrixShape&, const MatrixShape&) = default;
+};
+
 class GroupFamily {
  public:
   virtual ~GroupFamily() = default;
@@ -30,22 +38,23 @@ class GroupFamily {
   // The largest index the family takes, if it bounds n itself (SExR^k: 128 bodies); validation checks it, and the
   // server's --max-n cap (meant for SO(N)'s dense N) does not apply to such a family.
   virtual std::optional<int> max_index() const = 0;
-  // The size of its member's matrices (n on SO(n), n + 1 on SE(n)): a request's z and y0 are that square size.
-  virtual int matrix_size(int n) const = 0;
+  // The shape of its member's matrices (n x n on SO(n), (n + 1) x (n + 1) on SE(n), 11 x 11k on (SE(3) x R^6)^k,
+  // the bodies side by side): a request's z and y0 have that shape.
+  virtual MatrixShape matrix_shape(int n) const = 0;
   virtual int algebra_dim(int n) const = 0;
   virtual std::string algebra_dimension() const = 0;  // algebra_dim as a formula in n: "n(n-1)/2"
   virtual double log_radius() const = 0;
   virtual bool defines(ProblemKind kind, int n) const = 0;  // the problem is defined on the group (problems.hpp)
   virtual Eigen::MatrixXd random(int n, std::uint64_t seed) const = 0;  // the seeded start
-  // Why a request's matrix `name` (matrix_size square, finite) is refused as an element, or why y0 cannot be reached from z;
+  // Why a request's matrix `name` (matrix_shape, finite) is refused as an element, or why y0 cannot be reached from z;
   // empty when accepted.
   virtual std::string not_an_element(int n, const Eigen::MatrixXd& m, const std::string& name) const = 0;
   virtual std::string not_reachable(int n, const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const = 0;
   virtual Eigen::MatrixXd project(int n, const Eigen::MatrixXd& m) const = 0;  // the element nearest to m
   virtual bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const = 0;  // basin_map.hpp
-  // ||hat(vee(m)) - m||: how far the matrix m (matrix_size square) is from the algebra (a user's g must lie in it).
+  // ||hat(vee(m)) - m||: how far the matrix m (matrix_shape) is from the algebra (a user's g must lie in it).
   virtual double algebra_defect(int n, const Eigen::MatrixXd& m) const = 0;
-  // The bodies of an element (matrix_size square) as pictures draw them: a group with one rotation part gives one
+  // The bodies of an element (matrix_shape) as pictures draw them: a group with one rotation part gives one
   // frame at the origin (SO(3): y itself; SE(3): R of [[R, p], [0, 1]]; SO(3) x R^3: its R), a system of bodies
   // each body's axes at its position ((SE(3) x R^6)^k), the other groups none.
   virtual std::vector<BodyFrame> body_frames(int n, const Eigen::MatrixXd& m) const = 0;

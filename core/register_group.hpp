@@ -37,8 +37,11 @@ class FamilyOf final : public GroupFamily {
       return std::nullopt;
     }
   }
-  int matrix_size(int n) const override {
-    return Family::with_group(n, [](const auto& g) { return static_cast<int>(g.matrix(g.identity()).rows()); });
+  MatrixShape matrix_shape(int n) const override {
+    return Family::with_group(n, [](const auto& g) {
+      const Eigen::MatrixXd m = g.matrix(g.identity());
+      return MatrixShape{static_cast<int>(m.rows()), static_cast<int>(m.cols())};
+    });
   }
   int algebra_dim(int n) const override {
     return Family::with_group(n, [](const auto& g) { return g.dim(); });

@@ -23,24 +23,7 @@ SolveResult solve_on(const G& group, const SolveRequest& req, const TraceCallbac
   const auto field = make_field(group, req.problem);
   auto eq = Equation<G>::implicit_euler(group, group.element(req.problem.start()), req.h, *field);
   if (req.y0) eq.start_at(group.element(*req.y0));
-  // The solvers' y and iterates are G's Elements; the request's are G's matrices. They differ only where the Element
-  // is not square (a system of bodies: the strip [y1 ... yk], whose matrix is diag(y1, ..., yk)).
-  constexpr bool kElementIsMatrix = G::Element::RowsAtCompileTime == G::Element::ColsAtCompileTime;
-  const auto as_matrix = [&](Eigen::MatrixXd& y) {
-    if (y.size() > 0) y = group.matrix(typename G::Element(y));
-  };
-  TraceCallback on_iteration = cb;
-  if (!kElementIsMatrix && cb)
-    on_iteration = [&](const TraceRecord& r) {
-      TraceRecord m = r;
-      as_matrix(m.y);
-      return cb(m);
-    };
-  SolveResult result = run_method(req.solver.method, eq, req.solver, on_iteration);
-  if constexpr (!kElementIsMatrix) {
-    as_matrix(result.y);
-    for (TraceRecord& r : result.trace) as_matrix(r.y);
-  }
+  SolveResult result = run_method(req.solver.method, eq, req.solver, cb);
   if (result.status == Status::non_finite) {
     if (std::string why = off_algebra_reason(group, *field, result.total_iterations()); !why.empty())
       result.reason = std::move(why);

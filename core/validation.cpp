@@ -154,6 +154,10 @@ void check_user_field(const ProblemSpec& problem, int threads) {
     invalid("parameters", "at most " + std::to_string(user_field::kMaxParameters) + " parameters");
   for (const auto& [name, value] : problem.parameters) user_field::check_parameter(name, value);
   const GroupFamily& family = problem.family();
+  // A program reads y as one square matrix; a system of bodies' strip [y1 ... yk] is not one yet.
+  if (!family.matrix_shape(problem.n).square())
+    unprocessable("g", "a program g(y) runs on groups of square matrices; " + family.title(problem.n) +
+                           " is a system of bodies: use its built-in problems (chain)");
   const auto program = problem.program();
   check_workspace(problem, threads);
   // A program whose value at the start is off the algebra is wrong everywhere in practice: say so before solving,
@@ -172,10 +176,11 @@ void check_user_field(const ProblemSpec& problem, int threads) {
 void check_start_point(const ProblemSpec& problem) {
   const auto& z = problem.z;
   if (!z) return;
-  const int n = problem.n, size = problem.family().matrix_size(n);
-  if (z->rows() != size || z->cols() != size)
-    invalid("z", size == n ? "z must be an n x n array of rows" : "z must be a " + std::to_string(size) + " x " +
-                                                                     std::to_string(size) + " array of rows");
+  const int n = problem.n;
+  const MatrixShape shape = problem.family().matrix_shape(n);
+  if (z->rows() != shape.rows || z->cols() != shape.cols)
+    invalid("z", shape == MatrixShape{n, n} ? "z must be an n x n array of rows"
+                                            : "z must be a " + shape.text() + " array of rows");
   if (!z->allFinite()) invalid("z", "z must have finite entries");
   const std::string why = problem.family().not_an_element(n, *z, "z");
   if (!why.empty()) unprocessable("z", why);
@@ -183,9 +188,9 @@ void check_start_point(const ProblemSpec& problem) {
 
 void check_start_guess(const ProblemSpec& problem, const Eigen::MatrixXd& y0) {
   const Eigen::MatrixXd z = problem.start();
-  const auto n = z.rows();
-  if (y0.rows() != n || y0.cols() != n)
-    invalid("y0", "y0 must be a " + std::to_string(n) + " x " + std::to_string(n) + " array of rows (z's size)");
+  if (y0.rows() != z.rows() || y0.cols() != z.cols())
+    invalid("y0", "y0 must be a " + std::to_string(z.rows()) + " x " + std::to_string(z.cols()) +
+                      " array of rows (z's size)");
   if (!y0.allFinite()) invalid("y0", "y0 must have finite entries");
   const GroupFamily& family = problem.family();
   std::string why = family.not_an_element(problem.n, y0, "y0");

@@ -135,15 +135,18 @@ const json& read_array(const json& v, const std::string& field, std::size_t min_
   return v;
 }
 
-Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n, const std::string& message) {
-  if (!v.is_array() || v.size() != static_cast<std::size_t>(n)) fail(field, message);
-  Eigen::MatrixXd m(n, n);
-  for (int i = 0; i < n; ++i) {
+Eigen::MatrixXd read_matrix(const json& v, const std::string& field, MatrixShape shape, const std::string& message) {
+  if (!v.is_array() || v.size() != static_cast<std::size_t>(shape.rows)) fail(field, message);
+  Eigen::MatrixXd m(shape.rows, shape.cols);
+  for (int i = 0; i < shape.rows; ++i) {
     const json& row = v[static_cast<std::size_t>(i)];
-    if (!row.is_array() || row.size() != static_cast<std::size_t>(n)) fail(field, message);
-    for (int j = 0; j < n; ++j) m(i, j) = read_number(row[static_cast<std::size_t>(j)], field, message);
+    if (!row.is_array() || row.size() != static_cast<std::size_t>(shape.cols)) fail(field, message);
+    for (int j = 0; j < shape.cols; ++j) m(i, j) = read_number(row[static_cast<std::size_t>(j)], field, message);
   }
   return m;
+}
+Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n, const std::string& message) {
+  return read_matrix(v, field, MatrixShape{n, n}, message);
 }
 
 Eigen::MatrixXd read_matrix(const json& v, const std::string& field, int n) {
@@ -268,16 +271,15 @@ E read_value(const json& v, const fields::Field& row, const std::string& path, R
   fail(path, message);
 }
 
-// A square matrix of the request's group's size (n on SO(n), n + 1 on SE(n)); an unknown group is refused here
-// with the registry's 422.
+// A matrix of the request's group's shape (n x n on SO(n), (n + 1) x (n + 1) on SE(n), 11 x 11k on k bodies); an
+// unknown group is refused here with the registry's 422.
 std::optional<Eigen::MatrixXd> read_value(const json& v, const fields::Field&, const std::string& path, Reading& r,
                                           Tag<std::optional<Eigen::MatrixXd>>) {
   const GroupFamily& family = group_family(*r.group);
-  const int size = family.matrix_size(*r.n);
-  if (size == *r.n) return read_matrix(v, path, size);
-  const std::string k = std::to_string(size);
-  return read_matrix(v, path, size, path + " must be a " + k + " x " + k + " array of rows of finite numbers (an "
-                                        "element of " + family.title(*r.n) + ")");
+  const MatrixShape shape = family.matrix_shape(*r.n);
+  if (shape == MatrixShape{*r.n, *r.n}) return read_matrix(v, path, *r.n);
+  return read_matrix(v, path, shape, path + " must be a " + shape.text() + " array of rows of finite numbers (an "
+                                         "element of " + family.title(*r.n) + ")");
 }
 
 // A fixed-length vector of numbers within the row's bounds (rigid_body.inertia: positive).
@@ -383,9 +385,11 @@ void land(R& request, T C::*member, const json& v, const fields::Field& row, con
   C* target = part<C>(request);
   if (!target) return;
   if constexpr (std::is_same_v<C, ProblemSpec> && std::is_same_v<T, std::optional<Eigen::MatrixXd>>) {
-    // z without n: n is the index whose matrices have z's size (z's size itself unless the default n's do).
+    // z without n: n is the index whose matrices have z's size (z's size itself unless the default n's do), on the
+    // families of square matrices (a system of bodies is named with its n).
+    const MatrixShape shape = group_family(*r.group).matrix_shape(target->n);
     if (!r.n_given && v.is_array() && v.size() >= 2 && v.size() <= static_cast<std::size_t>(r.limits.max_n) &&
-        group_family(*r.group).matrix_size(target->n) != static_cast<int>(v.size()))
+        shape.square() && shape != MatrixShape{int(v.size()), int(v.size())})
       target->n = static_cast<int>(v.size());
   }
   target->*member = read_value(v, row, path, r, Tag<T>{});

@@ -21,10 +21,10 @@ void refuse_beyond(double values, const OutputLimits& limits, const char* field,
                      " numbers, more than the server's limit of " + std::to_string(limits.max_values));
 }
 
-// Numbers in one state y: its matrix is the group's size (n x n on SO(n), 4 x 4 on SE(3), 6 x 6 on SO(3) x R^3).
+// Numbers in one state y: its matrix's (n x n on SO(n), 4 x 4 on SE(3), 11 x 11k on k bodies (SE(3) x R^6)^k).
 double state_values(const ProblemSpec& problem) {
-  const double size = problem.family().matrix_size(problem.n);
-  return size * size;
+  const MatrixShape shape = problem.family().matrix_shape(problem.n);
+  return double(shape.rows) * double(shape.cols);
 }
 
 }  // namespace

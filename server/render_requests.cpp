@@ -82,8 +82,7 @@ void check_bodies(const ProblemSpec& p) {
   const std::string why =
       "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR) or bodies (SExR^k): ";
   const auto drawn = [&](int n) {
-    const int size = family.matrix_size(n);
-    return !family.body_frames(n, Eigen::MatrixXd::Identity(size, size)).empty();
+    return !family.body_frames(n, family.random(n, 1)).empty();
   };
   if (drawn(p.n)) return;
   // SO(3) has frames and SO(4) none: the index is what is wrong.

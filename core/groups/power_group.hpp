@@ -7,9 +7,9 @@
 // Sizes grow like k, not k^2: an element is the strip [y1 ... yk] of body matrices side by side (its +, -, scalar
 // multiples and Frobenius norm are those of diag(y1, ..., yk), so the solvers' distances are unchanged), and the
 // operators (ad, dexp, dexpinv and the problems' dg) are sparse, block diagonal for the group, so that a Newton
-// matrix keeps the couplings' sparsity. A request's matrix is diag(y1, ..., yk), read and written at the boundary
-// only (element, matrix). Generic code that multiplies elements as matrices (the paper's matrix problems) is not
-// defined on this group.
+// matrix keeps the couplings' sparsity. A request's matrix is the strip too (kRows x kRows k: 11 x 11k on
+// (SE(3) x R^6)^k), so a result's size also grows like k. Generic code that multiplies elements as matrices (the
+// paper's matrix problems, a user's program) is not defined on this group.
 //
 // Each body keeps B's log domain, so log is defined iff every body's is and the angle is the largest body's.
 #include <Eigen/Dense>
@@ -133,30 +133,21 @@ class PowerGroup {
     return join([&](int i) { return body_.tangent(body(y, i), body(u, i)); });
   }
 
-  // A request's matrix diag(y1, ..., yk) and back (not_an_element has checked the zeros off the blocks).
-  Element element(const Eigen::MatrixXd& m) const {
-    return join([&](int i) { return m.block<kRows, kRows>(i * kRows, i * kRows); });
-  }
-  Eigen::MatrixXd matrix(const Element& y) const {
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(kRows * k_, kRows * k_);
-    for (int i = 0; i < k_; ++i) m.block<kRows, kRows>(i * kRows, i * kRows) = body(y, i);
-    return m;
-  }
+  // A request's matrix is the strip itself (not_an_element has checked its shape).
+  Element element(const Eigen::MatrixXd& m) const { return m; }
+  Eigen::MatrixXd matrix(const Element& y) const { return y; }
   // Body i from the seed moved on i times by splitmix64's increment, as ProductGroup draws a repeated factor:
   // B^k and B x ... x B start in the same poses, and no two bodies in one.
   Element random(std::uint64_t seed) const {
     return join([&](int i) { return body_.random(seed + static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull); });
   }
-  // Block diagonal exactly, each block an element of B (in B's words, naming the body).
+  // The strip's shape, each block an element of B (in B's words, naming the body).
   std::string not_an_element(const Eigen::MatrixXd& m, const std::string& name) const {
+    if (m.rows() != kRows || m.cols() != kRows * k_)
+      return name + " must be " + std::to_string(k_) + " elements of " + body_.name() + " side by side (" +
+             std::to_string(kRows) + " x " + std::to_string(kRows * k_) + ")";
     for (int i = 0; i < k_; ++i) {
-      const int at = i * kRows, after = (k_ - i - 1) * kRows;
-      if (!m.block(at, 0, kRows, at).isZero(0.0) || !m.block(at, at + kRows, kRows, after).isZero(0.0))
-        return name + " must be block diagonal: " + std::to_string(k_) + " blocks of " + body_.name() + " (" +
-               std::to_string(kRows) + " x " + std::to_string(kRows) + ") on the diagonal, 0 elsewhere";
-    }
-    for (int i = 0; i < k_; ++i) {
-      const Eigen::MatrixXd block = m.block<kRows, kRows>(i * kRows, i * kRows);
+      const Eigen::MatrixXd block = m.middleCols<kRows>(i * kRows);
       if (std::string why = body_.not_an_element(block, name + "'s body " + std::to_string(i + 1)); !why.empty())
         return why;
     }
@@ -164,8 +155,7 @@ class PowerGroup {
   }
   std::string not_reachable(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const {
     for (int i = 0; i < k_; ++i) {
-      const Eigen::MatrixXd a = y0.block<kRows, kRows>(i * kRows, i * kRows);
-      const Eigen::MatrixXd b = z.block<kRows, kRows>(i * kRows, i * kRows);
+      const Eigen::MatrixXd a = y0.middleCols<kRows>(i * kRows), b = z.middleCols<kRows>(i * kRows);
       if (std::string why = body_.not_reachable(a, b); !why.empty()) return "body " + std::to_string(i + 1) + ": " + why;
     }
     return {};
