@@ -101,8 +101,8 @@ TEST(Krylov, MatrixFreeNewtonAgreesWithDenseAndStaysQuadratic) {
       req.solver.linear_solver = LinearSolver::gmres;
       const SolveResult krylov = solve(req);
       ASSERT_EQ(krylov.status, Status::converged) << krylov.reason;
-      EXPECT_EQ(krylov.linear_solver, "gmres");
-      EXPECT_EQ(dense.linear_solver, "lu");
+      EXPECT_EQ(krylov.linear_solver, Factorization::gmres);
+      EXPECT_EQ(dense.linear_solver, Factorization::dense_lu);
       EXPECT_LT((krylov.y - dense.y).norm(), 1e-12) << to_string(m) << " " << to_string(d);
       EXPECT_LE(krylov.iterations, dense.iterations + 1);
       ASSERT_TRUE(krylov.rate.has_value());
@@ -116,9 +116,9 @@ TEST(Krylov, ChosenAutomaticallyAboveTheThreshold) {
   req.problem.n = kKrylovThreshold + 1;
   req.h = 0.25;
   req.solver.max_iterations = 1;
-  EXPECT_EQ(solve(req).linear_solver, "gmres");
+  EXPECT_EQ(solve(req).linear_solver, Factorization::gmres);
   req.problem.n = kKrylovThreshold;
-  EXPECT_EQ(solve(req).linear_solver, "lu");
+  EXPECT_EQ(solve(req).linear_solver, Factorization::dense_lu);
 }
 
 }  // namespace
