@@ -24,7 +24,9 @@ TEST_F(ChainRoutes, IntegrateConvergesAndReportsTheEnergyWhenUndamped) {
   const json damped = post("/api/v1/integrate", std::string(kChain) + "}");
   ASSERT_EQ(damped["status"], "converged") << damped.dump().substr(0, 500);
   ASSERT_EQ(damped["steps"].size(), 64u);
-  EXPECT_EQ(matrix_from_rows(damped["y"]).rows(), 33);
+  const Eigen::MatrixXd y = matrix_from_rows(damped["y"]);
+  EXPECT_EQ(y.rows(), 11);  // the three links' 11 x 11 matrices side by side
+  EXPECT_EQ(y.cols(), 33);
   EXPECT_TRUE(damped["energy_drift"].is_null()) << "a damped chain loses energy: no invariant";
   const ChainParams p;
   const json given = post("/api/v1/integrate", std::string(kChain) + R"(,"chain":)" +
@@ -75,10 +77,10 @@ TEST_F(ChainRoutes, BadParametersAre422NamingTheField) {
   }
   const json one_body = post("/api/v1/integrate", R"({"problem":"chain","group":"SExR","h":0.01})", 422);
   EXPECT_EQ(one_body["error"]["field"], "group") << one_body.dump();
-  json z = json::array();  // y(0) as z beside the tilt that gives it
-  for (int i = 0; i < 33; ++i) {
+  json z = json::array();  // the identities side by side as z, beside the tilt that gives y(0)
+  for (int i = 0; i < 11; ++i) {
     json row = json::array();
-    for (int j = 0; j < 33; ++j) row.push_back(i == j ? 1 : 0);
+    for (int j = 0; j < 33; ++j) row.push_back(i == j % 11 ? 1 : 0);
     z.push_back(row);
   }
   const json given_z = post("/api/v1/integrate", std::string(kChain) + R"(,"z":)" + z.dump() + "}", 422);
