@@ -15,7 +15,8 @@ namespace {
 
 // The solver options an integrator's steps do not use are refused rather than ignored. A DIRK method solves each
 // stage as an equation of (1.1) by run_method, which takes them all; an implicit RKMK method solves its coupled
-// stage system by its own Newton (dense LU, stopping on h ||F||, rkmk_stages.hpp); an explicit one solves nothing.
+// stage system by its own Newton (LU, sparse for a system of bodies; stopping on h ||F||, rkmk_stages.hpp); an explicit
+// one solves nothing.
 // No integrator's stages start from seeded starts: each needs the root continued from its own start.
 void check_stage_options(const IntegrateRequest& req) {
   const SolverOptions& o = req.solver;
@@ -27,7 +28,7 @@ void check_stage_options(const IntegrateRequest& req) {
   if (form == integrators::Form::dirk_crouch_grossman) return;
   const std::string why = form == integrators::Form::explicit_rkmk
                               ? name + " is explicit: its steps solve no equation"
-                              : name + " solves its coupled stage system by its own Newton (dense LU, stopping on "
+                              : name + " solves its coupled stage system by its own Newton (LU, stopping on "
                                        "h ||F||)";
   const auto refuse = [&](const char* field) {
     validation::invalid(field, why + "; " + field + " applies to the DIRK integrators' stage equations");

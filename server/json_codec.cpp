@@ -4,10 +4,12 @@
 #include "core/group_registry.hpp"
 #include "core/validation.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -177,6 +179,7 @@ struct Reading {
   int* n = nullptr;       // the request's ProblemSpec::n
   const std::string* group = nullptr;  // the request's ProblemSpec::group (algebra coordinates are its group's)
   bool n_given = false;   // the request names n (else a z names it)
+  bool family_bounds_n = false;  // the group's family bounds n itself (max_index), not --max-n
 };
 
 // The enums' lists, for parsing a name by its place in the row's values.
@@ -207,7 +210,8 @@ std::optional<double> read_value(const json& v, const fields::Field& row, const 
 int read_value(const json& v, const fields::Field& row, const std::string& path, Reading& r, Tag<int>) {
   const long long lo = row.minimum ? static_cast<long long>(*row.minimum) : INT_MIN;
   const long long hi = row.maximum ? static_cast<long long>(*row.maximum) : INT_MAX;
-  return read_int(v, path, lo, std::min(hi, cap_of(row.cap, r.limits)));
+  const long long cap = row.cap == fields::Cap::n && r.family_bounds_n ? LLONG_MAX : cap_of(row.cap, r.limits);
+  return read_int(v, path, lo, std::min(hi, cap));
 }
 
 bool read_value(const json& v, const fields::Field&, const std::string& path, Reading&, Tag<bool>) {
@@ -408,14 +412,50 @@ void read_object(const json& v, const std::string& prefix, const std::vector<con
   }
 }
 
+// "group": "SExR^8" is {"group": "SExR^k", "n": 8} when "SExR^k" is a registered family that bounds its index; an
+// index out of its range is a 422 naming group, a different explicit n one naming n. Other names pass unchanged.
+json with_power_shorthand(const json& body) {
+  if (!body.is_object() || !body.contains("group") || !body["group"].is_string()) return body;
+  const std::string& name = body["group"].get_ref<const std::string&>();
+  const std::size_t caret = name.rfind('^');
+  if (caret == std::string::npos || caret + 1 == name.size() ||
+      name.find_first_not_of("0123456789", caret + 1) != std::string::npos)
+    return body;
+  const std::string family_name = name.substr(0, caret) + "^k";
+  const auto names = registered_group_names();
+  if (std::find(names.begin(), names.end(), family_name) == names.end()) return body;
+  const std::optional<int> max = group_family(family_name).max_index();
+  const std::string digits = name.substr(caret + 1);
+  const long long k = digits.size() > 6 ? LLONG_MAX : std::stoll(digits);
+  if (!max || k < fields::n.min || k > *max)
+    throw RequestError(RequestError::Kind::unprocessable, "group",
+                       "group " + name + " must name " + std::to_string(fields::n.min) + " to " +
+                           std::to_string(max.value_or(fields::n.min)) + " bodies (" + family_name + " with n = k)");
+  json out = body;
+  if (out.contains("n") && !out["n"].is_null() && out["n"] != json(k))
+    throw RequestError(RequestError::Kind::unprocessable, "n",
+                       "group " + name + " has n = " + digits + ": n must be " + digits + " or absent, got " +
+                           out["n"].dump());
+  out["group"] = family_name;
+  out["n"] = k;
+  return out;
+}
+
 // A route's request: every row the route takes, read into the request struct.
 template <class Request>
-Request read_request(const json& body, fields::Route route, const Limits& limits) {
+Request read_request(const json& given, fields::Route route, const Limits& limits) {
+  const json body = with_power_shorthand(given);
   Request request;
   Reading r{limits};
   r.n = &part<ProblemSpec>(request)->n;
   r.group = &part<ProblemSpec>(request)->group;
   r.n_given = body.is_object() && body.contains("n") && !body["n"].is_null();
+  if (body.is_object() && body.contains("group") && body["group"].is_string()) {
+    const std::string& name = body["group"].get_ref<const std::string&>();
+    const auto names = registered_group_names();
+    r.family_bounds_n = std::find(names.begin(), names.end(), name) != names.end() &&
+                        group_family(name).max_index().has_value();
+  }
   read_object(body, "", fields::fields_of(route), request, r);
   if (part<ProblemSpec>(request)->g && body.contains("problem") && !body["problem"].is_null())
     throw RequestError(RequestError::Kind::unprocessable, "g",
@@ -867,7 +907,7 @@ json to_json(const SolveResult& r, bool include_iterates) {
          {"trace", std::move(trace)},
          {"seconds", finite_or_null(r.seconds)},
          {"cpu_seconds", finite_or_null(r.cpu_seconds)},
-         {"linear_solver", r.linear_solver}};
+         {"linear_solver", std::string(to_string(r.linear_solver))}};
   if (r.algebra_residual) j["algebra_residual"] = finite_or_null(*r.algebra_residual);
   j["branch"] = std::string(to_string(r.branch));
   j["found_by"] = std::string(to_string(r.found_by));
@@ -948,6 +988,7 @@ json to_json(const IntegrateResult& r) {
               {"mean_iterations", finite_or_null(r.mean_iterations)},
               {"jacobian_evaluations", optional_integer(r.jacobian_evaluations)},
               {"factorizations", optional_integer(r.factorizations)},
+              {"linear_solver", r.linear_solver ? json(std::string(to_string(*r.linear_solver))) : json(nullptr)},
               {"y", matrix_to_json(r.y)},
               {"frames", std::move(frames)},
               {"frame_times", std::move(times)},

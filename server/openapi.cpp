@@ -9,6 +9,7 @@
 #include "core/status.hpp"
 #include "core/vocabulary.hpp"
 #include "core/fields.hpp"
+#include "core/group_registry.hpp"
 #include "server/json_codec.hpp"
 #include "server/openapi_labels.hpp"
 #include "server/render_requests.hpp"
@@ -24,6 +25,34 @@ json enum_schema(const Enum (&all)[K], const char* description) {
   json values = json::array();
   for (auto e : all) values.push_back(std::string(to_string(e)));
   return json{{"type", "string"}, {"enum", values}, {"description", description}};
+}
+
+template <class Enum, std::size_t K>
+json nullable_enum(const Enum (&all)[K], const char* description) {
+  json schema = enum_schema(all, description);
+  schema["nullable"] = true;
+  return schema;
+}
+
+// What a result's linear_solver says.
+constexpr const char* kFactorizationUsed =
+    "how the Newton systems were factored: dense-lu, sparse-lu (a system of bodies whose Newton matrix is large: "
+    "its block sparsity kept) or gmres (matrix-free); an integration that used two reports the larger kind, and "
+    "null when it solved no linear system (explicit methods, the fixed point)";
+
+// The group's names, or the shorthand <body>^<k> of a family named <body>^k that bounds its index (json_codec.cpp
+// reads "SExR^8" as {"group": "SExR^k", "n": 8}).
+json with_power_shorthand(json s) {
+  std::string bodies;
+  for (const std::string& name : registered_group_names()) {
+    if (name.size() < 2 || name.compare(name.size() - 2, 2, "^k") != 0 || !group_family(name).max_index()) continue;
+    bodies += (bodies.empty() ? "" : "|") + name.substr(0, name.size() - 2);
+  }
+  if (bodies.empty()) return s;
+  json names{{"type", "string"}, {"enum", s["enum"]}};
+  s.erase("enum");
+  s["anyOf"] = json::array({names, json{{"type", "string"}, {"pattern", "^(" + bodies + ")\\^[0-9]+$"}}});
+  return s;
 }
 
 json ref(const std::string& name) { return json{{"$ref", "#/components/schemas/" + name}}; }
@@ -102,6 +131,7 @@ json schema_of(const fields::Field& f) {
     if (max) s["maximum"] = bound(*max);
   }
   if (!f.values.empty()) s["enum"] = f.values;
+  if (f.name == "group") s = with_power_shorthand(std::move(s));
   std::visit([&](const auto& d) {
     if constexpr (!std::is_same_v<std::decay_t<decltype(d)>, std::monostate>) s["default"] = d;
   }, f.default_value);
@@ -208,7 +238,7 @@ json schemas() {
                              {"y", matrix("the returned iterate y_iterate")}, {"trace", array_of(ref("TraceRecord"))},
                              {"seconds", number("wall time")},
                              {"cpu_seconds", number("solver CPU time of the whole solve (see TraceRecord.cpu_seconds)")},
-                             {"linear_solver", json{{"type", "string"}}},
+                             {"linear_solver", enum_schema(kAllFactorizations, kFactorizationUsed)},
                              {"branch", enum_schema(kAllBranches, "which root y is: continued = reached by following z's branch of roots from h = 0 to h, no fold passed; other = known not to be that root; unchecked = not checked (a plain solve)")},
                              {"found_by", enum_schema(kAllSearches, "which search produced y: the plain solve, continuation, or a multistart start")},
                              {"distance_from_z", number("||y - z||_F")},
@@ -284,6 +314,7 @@ json schemas() {
                                  {"mean_iterations", nullable_number("total_iterations per step")},
                                  {"jacobian_evaluations", nullable_integer(std::string(kJacobianEvaluations) + ", summed over the steps")},
                                  {"factorizations", nullable_integer(std::string(kFactorizations) + ", summed over the steps")},
+                                 {"linear_solver", nullable_enum(kAllFactorizations, kFactorizationUsed)},
                                  {"y", matrix("final state")},
                                  {"frames", array_of(matrix("state"))}, {"frame_times", array_of(json{{"type", "number"}})},
                                  {"frame_steps", json{{"type", "array"}, {"items", integer("")},

@@ -100,6 +100,7 @@ json openapi_labels(const ServerOptions& options) {
             {"differential", entries(kAllDifferentials)},
             {"integrator", integrators},
             {"linear_solver", entries(kAllLinearSolvers)},
+            {"factorization", entries(kAllFactorizations)},
             {"globalization", entries(kAllGlobalizations)},
             {"stopping", entries(kAllStoppings)},
             {"predictor", entries(kAllPredictors)},

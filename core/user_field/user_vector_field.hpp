@@ -61,9 +61,11 @@ class UserVectorField final : public VectorField<G> {
   double defect() const { return defect_.load(); }
 
  private:
-  // y's matrix (group.matrix(y)), read in place where the Element is that matrix already.
+  // y's matrix (group.matrix(y)), read in place where the Element is that matrix already (a square Eigen matrix; a
+  // system of bodies' strip [y1 ... yk] is not: its matrix is diag(y1, ..., yk)).
   decltype(auto) as_matrix(const Element& y) const {
-    if constexpr (std::is_same_v<Element, Eigen::Matrix<double, Element::RowsAtCompileTime,
+    if constexpr (Element::RowsAtCompileTime == Element::ColsAtCompileTime &&
+                  std::is_same_v<Element, Eigen::Matrix<double, Element::RowsAtCompileTime,
                                                          Element::ColsAtCompileTime>>)
       return (y);
     else

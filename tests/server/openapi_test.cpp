@@ -236,6 +236,7 @@ TEST(OpenApi, ExtensionLabelsEveryEnumValue) {
       {"linear_solver", schemas["SolveRequest"]["properties"]["linear_solver"]["enum"]},
       {"integrator", schemas["IntegrateRequest"]["properties"]["integrator"]["enum"]},
       {"status", schemas["SolveResult"]["properties"]["status"]["enum"]},
+      {"factorization", schemas["SolveResult"]["properties"]["linear_solver"]["enum"]},
       {"heatmap_metric", schemas["RenderHeatmapRequest"]["properties"]["metric"]["enum"]},
   };
   for (const auto& [name, values] : published) {
