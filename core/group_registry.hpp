@@ -52,7 +52,11 @@ class GroupFamily {
   virtual std::string not_reachable(int n, const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const = 0;
   virtual Eigen::MatrixXd project(int n, const Eigen::MatrixXd& m) const = 0;  // the element nearest to m
   virtual bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const = 0;  // basin_map.hpp
-  // ||hat(vee(m)) - m||: how far the matrix m (matrix_shape) is from the algebra (a user's g must lie in it).
+  // What a user's program reads for the element m (matrix_shape): m itself, or a system of bodies' diag(y1, ..., yk)
+  // (user_field/algebra_defect.hpp); its size, program_size(n), is what a program is compiled for.
+  virtual Eigen::MatrixXd program_matrix(int n, const Eigen::MatrixXd& m) const = 0;
+  virtual int program_size(int n) const = 0;
+  // ||hat(vee(m)) - m||: how far a program's value m is from the algebra (a user's g must lie in it).
   virtual double algebra_defect(int n, const Eigen::MatrixXd& m) const = 0;
   // The bodies of an element (matrix_shape) as pictures draw them: a group with one rotation part gives one
   // frame at the origin (SO(3): y itself; SE(3): R of [[R, p], [0, 1]]; SO(3) x R^3: its R), a system of bodies

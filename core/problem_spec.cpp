@@ -35,7 +35,7 @@ void validate(const ProblemSpec& problem, int threads) {
 }
 
 std::shared_ptr<const user_field::Program> ProblemSpec::program() const {
-  return programs->get(*g, family().matrix_shape(n).rows, parameters);
+  return programs->get(*g, family().program_size(n), parameters);
 }
 
 std::string ProblemSpec::name() const { return g ? "g(y)" : std::string(to_string(kind)); }

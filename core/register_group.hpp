@@ -70,6 +70,14 @@ class FamilyOf final : public GroupFamily {
   bool same_root(int n, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const override {
     return Family::with_group(n, [&](const auto& g) { return lienewton::same_root(g, g.element(a), g.element(b)); });
   }
+  Eigen::MatrixXd program_matrix(int n, const Eigen::MatrixXd& m) const override {
+    return Family::with_group(n, [&](const auto& g) { return lienewton::program_matrix(g, g.element(m)); });
+  }
+  int program_size(int n) const override {
+    return Family::with_group(n, [](const auto& g) {
+      return static_cast<int>(lienewton::program_matrix(g, g.identity()).rows());
+    });
+  }
   double algebra_defect(int n, const Eigen::MatrixXd& m) const override {
     return Family::with_group(n, [&](const auto& g) { return lienewton::algebra_defect(g, m); });
   }

@@ -154,17 +154,13 @@ void check_user_field(const ProblemSpec& problem, int threads) {
     invalid("parameters", "at most " + std::to_string(user_field::kMaxParameters) + " parameters");
   for (const auto& [name, value] : problem.parameters) user_field::check_parameter(name, value);
   const GroupFamily& family = problem.family();
-  // A program reads y as one square matrix; a system of bodies' strip [y1 ... yk] is not one yet.
-  if (!family.matrix_shape(problem.n).square())
-    unprocessable("g", "a program g(y) runs on groups of square matrices; " + family.title(problem.n) +
-                           " is a system of bodies: use its built-in problems (chain)");
   const auto program = problem.program();
   check_workspace(problem, threads);
   // A program whose value at the start is off the algebra is wrong everywhere in practice: say so before solving,
   // when one evaluation is cheap (a sweep validates every n); otherwise the run's own check names g.
   constexpr double kCheapFlops = 1e8;
   if (program->cost() > kCheapFlops) return;
-  const Eigen::MatrixXd z = problem.start();
+  const Eigen::MatrixXd z = family.program_matrix(problem.n, problem.start());
   Eigen::MatrixXd value;
   program->eval(z, 0.0, value);
   const double defect = family.algebra_defect(problem.n, value);

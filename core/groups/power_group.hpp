@@ -133,6 +133,15 @@ class PowerGroup {
     return join([&](int i) { return body_.tangent(body(y, i), body(u, i)); });
   }
 
+  // diag(y1, ..., yk), the square matrix a user's program reads (user_field/algebra_defect.hpp), and its blocks.
+  Eigen::MatrixXd block_diagonal(const Element& y) const {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(kRows * k_, kRows * k_);
+    for (int i = 0; i < k_; ++i) m.block<kRows, kRows>(i * kRows, i * kRows) = body(y, i);
+    return m;
+  }
+  Element diagonal_blocks(const Eigen::MatrixXd& m) const {
+    return join([&](int i) { return m.block<kRows, kRows>(i * kRows, i * kRows); });
+  }
   // A request's matrix is the strip itself (not_an_element has checked its shape).
   Element element(const Eigen::MatrixXd& m) const { return m; }
   Eigen::MatrixXd matrix(const Element& y) const { return y; }

@@ -61,18 +61,18 @@ class UserVectorField final : public VectorField<G> {
   double defect() const { return defect_.load(); }
 
  private:
-  // y's matrix (group.matrix(y)), read in place where the Element is that matrix already (a square Eigen matrix; a
-  // system of bodies' strip [y1 ... yk] is not: its matrix is diag(y1, ..., yk)).
+  // y as the program reads it (program_matrix), in place where the Element is that matrix already (a square Eigen
+  // matrix; a system of bodies' strip [y1 ... yk] is not: the program reads diag(y1, ..., yk)).
   decltype(auto) as_matrix(const Element& y) const {
     if constexpr (Element::RowsAtCompileTime == Element::ColsAtCompileTime &&
                   std::is_same_v<Element, Eigen::Matrix<double, Element::RowsAtCompileTime,
                                                          Element::ColsAtCompileTime>>)
       return (y);
     else
-      return group_.matrix(y);
+      return program_matrix(group_, y);
   }
   Vector in_algebra(const Eigen::MatrixXd& m) const {
-    const Vector v = group_.vee(group_.element(m));
+    const Vector v = group_.vee(program_element(group_, m));
     const double defect = (as_matrix(Element(group_.hat(v))) - m).norm();  // algebra_defect, vee taken once
     if (!std::isfinite(defect) || within_rounding(defect, m)) return v;
     double none = 0;
