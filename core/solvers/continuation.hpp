@@ -174,19 +174,48 @@ class BranchPath {
 
   // F(v, tau) and its Jacobian [D_v F  D_tau F], bordered by the row c^T: the corrector's and the tangent's matrix.
   struct Linearized {
-    Eigen::VectorXd f;  // F(v, tau)
-    Eigen::MatrixXd m;  // (q + 1) x (q + 1); the last row is the caller's
-    double scale = 0;   // 1 + ||v|| + tau ||g||: what F's rounding is relative to
+    Eigen::VectorXd f;      // F(v, tau)
+    DynamicOperator<G> a;   // D_v F (sparse for a system of bodies)
+    Eigen::VectorXd d_tau;  // D_tau F = -g
+    double scale = 0;       // 1 + ||v|| + tau ||g||: what F's rounding is relative to
   };
+  // [D_v F  D_tau F; row^T  corner] x = rhs. A sparse D_v F stays sparse (its border adds 2q + 1 entries) and is
+  // factored by NewtonLu; a singular one gives NaN, as the dense LU's infinities do.
+  Eigen::VectorXd bordered_solve(const Linearized& l, const Vector& row, double corner,
+                                 const Eigen::VectorXd& rhs) const {
+    if constexpr (kSparseOperator<G>) {
+      std::vector<Eigen::Triplet<double>> entries;
+      entries.reserve(static_cast<std::size_t>(l.a.nonZeros() + 2 * q_ + 1));
+      for (Eigen::Index c = 0; c < l.a.outerSize(); ++c)
+        for (typename DynamicOperator<G>::InnerIterator it(l.a, c); it; ++it)
+          entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+      for (int i = 0; i < q_; ++i) {
+        entries.emplace_back(i, q_, l.d_tau[i]);
+        entries.emplace_back(q_, i, row[i]);
+      }
+      entries.emplace_back(q_, q_, corner);
+      Eigen::SparseMatrix<double> m(q_ + 1, q_ + 1);
+      m.setFromTriplets(entries.begin(), entries.end());
+      detail::NewtonLu<double> lu;
+      if (!lu.factorize(m)) return Eigen::VectorXd::Constant(q_ + 1, std::numeric_limits<double>::quiet_NaN());
+      return lu.solve(rhs);
+    } else {
+      Eigen::MatrixXd m(q_ + 1, q_ + 1);
+      m.topLeftCorner(q_, q_) = l.a;
+      m.topRightCorner(q_, 1) = l.d_tau;
+      m.bottomLeftCorner(1, q_) = Eigen::VectorXd(row).transpose();
+      m(q_, q_) = corner;
+      return Eigen::PartialPivLU<Eigen::MatrixXd>(m).solve(rhs);
+    }
+  }
   Linearized linearize(const Point& x) const {
     const Equation<G> e = eq_.at_step(x.h);
     const auto p = e.at_algebra(x.v);
     const Vector g = e.field()->g(p.y);
     Linearized l;
     l.f = Eigen::VectorXd(p.f);
-    l.m = Eigen::MatrixXd::Zero(q_ + 1, q_ + 1);
-    l.m.topLeftCorner(q_, q_) = Eigen::MatrixXd(e.dftilde_matrix(p, Differential::exact));
-    l.m.topRightCorner(q_, 1) = -Eigen::VectorXd(g);
+    l.a = DynamicOperator<G>(e.dftilde_matrix(p, Differential::exact));
+    l.d_tau = -Eigen::VectorXd(g);
     l.scale = 1.0 + x.v.norm() + x.h * g.norm();
     return l;
   }
@@ -201,13 +230,10 @@ class BranchPath {
 
   // The unit tangent at x oriented along previous: [D_v F  D_tau F; previous^T] t = (0, 1).
   Tangent tangent_at(const Corrected& c, const Tangent& previous) const {
-    Linearized l = linearize(c.point);
-    l.m.bottomLeftCorner(1, q_) = Eigen::VectorXd(previous.v).transpose();
-    l.m(q_, q_) = previous.th;
+    const Linearized l = linearize(c.point);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(q_ + 1);
     rhs[q_] = 1.0;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(l.m);
-    const Eigen::VectorXd t = lu.solve(rhs);
+    const Eigen::VectorXd t = bordered_solve(l, previous.v, previous.th, rhs);
     Tangent out;
     const double norm = t.norm();
     out.valid = t.allFinite() && norm > 0.0;
@@ -226,17 +252,15 @@ class BranchPath {
     for (int it = 0; it <= kMaxCorrectorIterations; ++it) {
       throw_if_cancelled();
       if (x.h < 0.0) return std::nullopt;
-      Linearized l = linearize(x);
+      const Linearized l = linearize(x);
       if (!l.f.allFinite()) return std::nullopt;
       const double residual = l.f.norm();
       if (residual <= kPathTolerance * l.scale) return Corrected{x, it, residual};
       if (it == kMaxCorrectorIterations) return std::nullopt;
-      l.m.bottomLeftCorner(1, q_) = Eigen::VectorXd(c.v).transpose();
-      l.m(q_, q_) = c.th;
       Eigen::VectorXd rhs(q_ + 1);
       rhs.head(q_) = -l.f;
       rhs[q_] = -(c.v.dot(x.v - pred.v) + c.th * (x.h - pred.h));
-      const Eigen::VectorXd dx = Eigen::PartialPivLU<Eigen::MatrixXd>(l.m).solve(rhs);
+      const Eigen::VectorXd dx = bordered_solve(l, c.v, c.th, rhs);
       const double step = dx.norm();
       if (!dx.allFinite() || (it > 0 && step > kMaxContraction * previous &&
                               step > 1e3 * std::numeric_limits<double>::epsilon() * l.scale))

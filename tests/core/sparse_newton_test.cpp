@@ -101,6 +101,27 @@ TEST(SparseNewton, TheBoundAndNotTheBodyCountPicksTheFactorization) {
   }
 }
 
+// Continuation's search (its bordered system, sparse or dense) ends at the same root, at an h small enough to solve
+// directly and at one whose path has to be followed.
+TEST(SparseNewton, ContinuationLandsWhereTheDenseLuLands) {
+  const G group(6);
+  const test::SpringChain field(group, 1.0);
+  for (double h : {0.1, 4.0}) {
+    const auto eq = Equation<G>::implicit_euler(group, group.random(11), h, field);
+    std::vector<SolveResult> results;
+    for (int bound : {kSparse, kDense}) {
+      const DenseLuBound scope(bound);
+      SolverOptions opt;
+      opt.tol = 1e-12;
+      results.push_back(continued_root(Method::newton_group, eq, opt, {}, false));
+    }
+    EXPECT_EQ(results[0].status, results[1].status) << h << ": " << results[0].reason << " / " << results[1].reason;
+    if (results[0].status == Status::converged) {
+      EXPECT_LE((results[0].y - results[1].y).norm(), 1e-9) << h;
+    }
+  }
+}
+
 // Steps of dirk-cg2 (stages through the equation solvers) and rkmk-radau3 (coupled stages: the exact Jacobian, and
 // the simplified Newton's decoupled real and complex blocks) end where the dense LU's steps end.
 TEST(SparseNewton, IntegratorStepsMatchTheDenseLu) {
