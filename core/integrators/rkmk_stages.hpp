@@ -98,7 +98,10 @@ class RkmkStages {
   // lie on the linearisation's branch from h = 0: every eigenvalue mu of hJ is small (|mu| rho(A) < 1: a Neumann
   // series) or has Re mu <= 0 (then mu lambda is never real and positive for an eigenvalue lambda of A, whose real
   // part is positive in every implicit tableau here).
+  // A system too large for a dense LU (a sparse one above dense_lu_max_dim()) would pay O(q^3) for the
+  // eigenvalues at every step: regularity is then not known, and the stages follow the branch from h = 0.
   bool linearisation_regular() const {
+    if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return false;
     const Eigen::VectorXcd mu = Eigen::MatrixXd(jacobian_at_start()).eigenvalues();
     const double rho = tab_->a.eigenvalues().cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i < mu.size(); ++i)

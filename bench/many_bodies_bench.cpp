@@ -1,0 +1,100 @@
+// Many bodies: the built-in chain (k links on (SE(3) x R^6)^k joined by stiff penalty joints) at its default data
+// and a fixed step, for k = 2, 4, ..., 128 bodies, each integrator timed in the same run:
+//   Chain_Scaling/<integrator>   per k the mean Newton iterations per step, the CPU per step and the peak heap
+//                                of the integration; the counters give the iterations' max over min across k, the
+//                                exponent of the CPU per step fitted on k = 8 ... 128 (least squares on log-log) and
+//                                the peak heap's likewise; the label says whether the iterations per step stay at
+//                                most 4 and within 1.5x across k. Errors out when an integration fails.
+//   Chain_DenseVsSparse/<k>      the same integration with the Newton matrix factored dense (LU on the dense
+//                                matrix) and structured (the automatic choice: sparse LU), same run: dense_over_sparse
+//                                is their CPU ratio, and both must land on the same y (to 1e-10 relative).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "bench/alloc_count.hpp"
+#include "core/cpu_clock.hpp"
+#include "core/group_registry.hpp"
+#include "core/integrate.hpp"
+#include "core/order_fit.hpp"
+#include "core/solvers/newton_step.hpp"
+
+namespace {
+
+using namespace lienewton;
+
+constexpr double kStep = 1.0 / 256;  // the chain's default joint period is ~0.02 s: h spans about half of one
+constexpr int kSteps = 8;
+
+ProblemSpec chain(int k) { return ProblemSpec{.kind = ProblemKind::chain, .group = "SExR^k", .n = k}; }
+
+// dense: every Newton matrix factored dense (the bound on sparse LU lifted past the system's size).
+IntegrateResult run(int k, Integrator integrator, bool dense = false) {
+  IntegrateRequest req{.problem = chain(k), .h = kStep, .t_end = kSteps * kStep, .integrator = integrator,
+                       .reference = false};
+  const int bound = dense_lu_max_dim();
+  if (dense) dense_lu_max_dim() = std::numeric_limits<int>::max();
+  IntegrateResult r = group_family("SExR^k").integrate(req, req.problem.start(), {});
+  dense_lu_max_dim() = bound;
+  return r;
+}
+
+void Chain_Scaling(benchmark::State& state, Integrator integrator) {
+  const std::vector<int> bodies{2, 4, 8, 16, 32, 64, 128};
+  std::vector<double> cpu(bodies.size(), 0.0), iterations(bodies.size()), peak(bodies.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      IntegrateResult r;
+      const double start = thread_cpu_seconds();
+      peak[i] = static_cast<double>(bench::peak_bytes_in([&] { r = run(bodies[i], integrator); }));
+      cpu[i] += thread_cpu_seconds() - start;
+      if (r.status != Status::converged)
+        state.SkipWithError(("k = " + std::to_string(bodies[i]) + ": " + r.reason).c_str());
+      iterations[i] = r.mean_iterations;
+    }
+  }
+  std::vector<double> ks, per_step, heap;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string k = std::to_string(bodies[i]);
+    state.counters["iterations_k" + k] = iterations[i];
+    state.counters["cpu_per_step_us_k" + k] = 1e6 * cpu[i] / (double(state.iterations()) * kSteps);
+    state.counters["peak_heap_kib_k" + k] = peak[i] / 1024;
+    if (bodies[i] >= 8) ks.push_back(bodies[i]), per_step.push_back(cpu[i]), heap.push_back(peak[i]);
+  }
+  const auto [low, high] = std::minmax_element(iterations.begin(), iterations.end());
+  state.counters["iterations_max_over_min"] = *high / *low;
+  state.counters["cpu_exponent"] = fitted_order(ks, per_step).value_or(NAN);
+  state.counters["heap_exponent"] = fitted_order(ks, heap).value_or(NAN);
+  state.SetLabel(*high <= 4 && *high <= 1.5 * *low ? "iterations per step at most 4 and flat in k"
+                                                     : "iterations per step above 4 or not flat in k");
+}
+
+void Chain_DenseVsSparse(benchmark::State& state, Integrator integrator) {
+  const int k = static_cast<int>(state.range(0));
+  double dense = 0, sparse = 0;
+  IntegrateResult a, b;
+  for (auto _ : state) {
+    double start = thread_cpu_seconds();
+    a = run(k, integrator, true);
+    dense += thread_cpu_seconds() - start;
+    start = thread_cpu_seconds();
+    b = run(k, integrator);
+    sparse += thread_cpu_seconds() - start;
+  }
+  if (a.status != Status::converged || b.status != Status::converged) state.SkipWithError("a run failed");
+  if (!((a.y - b.y).norm() <= 1e-10 * b.y.norm())) state.SkipWithError("dense and sparse land apart");
+  state.counters["dense_over_sparse"] = dense / sparse;
+  state.SetLabel(std::string(to_string(a.linear_solver.value_or(Factorization::gmres))) + " vs " +
+                 std::string(to_string(b.linear_solver.value_or(Factorization::gmres))));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(Chain_Scaling, dirk_cg2, Integrator::dirk_cg2)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Chain_Scaling, rkmk_radau3, Integrator::rkmk_radau3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Chain_DenseVsSparse, dirk_cg2, Integrator::dirk_cg2)->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Chain_DenseVsSparse, rkmk_radau3, Integrator::rkmk_radau3)->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);
