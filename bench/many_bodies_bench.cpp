@@ -96,5 +96,7 @@ void Chain_DenseVsSparse(benchmark::State& state, Integrator integrator) {
 
 BENCHMARK_CAPTURE(Chain_Scaling, dirk_cg2, Integrator::dirk_cg2)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_Scaling, rkmk_radau3, Integrator::rkmk_radau3)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(Chain_DenseVsSparse, dirk_cg2, Integrator::dirk_cg2)->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(Chain_DenseVsSparse, rkmk_radau3, Integrator::rkmk_radau3)->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Chain_DenseVsSparse, dirk_cg2, Integrator::dirk_cg2)
+    ->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(Chain_DenseVsSparse, rkmk_radau3, Integrator::rkmk_radau3)
+    ->Arg(8)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1);

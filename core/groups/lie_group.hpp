@@ -74,7 +74,8 @@ concept LieGroup = requires(const G g, const typename G::Element y, const typena
 
 // Whether G's operators are sparse matrices (a system of bodies): the Newton matrix is then factored sparse.
 template <class G>
-inline constexpr bool kSparseOperator = std::is_base_of_v<Eigen::SparseMatrixBase<typename G::Operator>, typename G::Operator>;
+inline constexpr bool kSparseOperator =
+    std::is_base_of_v<Eigen::SparseMatrixBase<typename G::Operator>, typename G::Operator>;
 
 // G's operators at run-time size, for matrices built from them (stage systems): a sparse one stays sparse.
 template <class G>

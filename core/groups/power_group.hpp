@@ -165,7 +165,8 @@ class PowerGroup {
   std::string not_reachable(const Eigen::MatrixXd& y0, const Eigen::MatrixXd& z) const {
     for (int i = 0; i < k_; ++i) {
       const Eigen::MatrixXd a = y0.middleCols<kRows>(i * kRows), b = z.middleCols<kRows>(i * kRows);
-      if (std::string why = body_.not_reachable(a, b); !why.empty()) return "body " + std::to_string(i + 1) + ": " + why;
+      if (std::string why = body_.not_reachable(a, b); !why.empty())
+        return "body " + std::to_string(i + 1) + ": " + why;
     }
     return {};
   }
