@@ -153,10 +153,20 @@ void check_bodies(const std::vector<BodyFrame>& bodies, std::size_t count) {
 
 }  // namespace
 
-void draw_bodies(Canvas& canvas, const Camera& camera, const std::vector<std::vector<BodyFrame>>& states,
-                 const std::vector<BodyFrame>& start) {
-  check_bodies(start, start.size());
-  for (const auto& state : states) check_bodies(state, start.size());
+void draw_bodies(Canvas& canvas, const Camera& camera, const std::vector<std::vector<BodyFrame>>& given_states,
+                 const std::vector<BodyFrame>& given_start) {
+  check_bodies(given_start, given_start.size());
+  for (const auto& state : given_states) check_bodies(state, given_start.size());
+  // Mechanics draws z up: the world turned so that its z is the camera's up (y) and its y points away.
+  Eigen::Matrix3d z_up;
+  z_up << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  const auto turned = [&](std::vector<BodyFrame> bodies) {
+    for (BodyFrame& b : bodies) b = {z_up * b.rotation, z_up * b.position};
+    return bodies;
+  };
+  std::vector<std::vector<BodyFrame>> states;
+  for (const auto& state : given_states) states.push_back(turned(state));
+  const std::vector<BodyFrame> start = turned(given_start);
   const BodiesFit fit = fit_bodies(states, start);
   // Axes as long as a third of the mean spacing of the last state's bodies: neighbours' axes do not cross.
   const std::vector<BodyFrame>& last = states.empty() ? start : states.back();

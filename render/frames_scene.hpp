@@ -20,7 +20,7 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
                  const Eigen::Matrix3d& start);
 
 // A system of bodies: each state is every body's frame, drawn as its axes at its position, the bodies joined in
-// order by a line from the origin (where the first hangs). The scene is fitted to the unit sphere's place: every
+// order by a line from the origin (where the first hangs), with the world's z up (gravity's usual down is -z). The scene is fitted to the unit sphere's place: every
 // position of every state, and the origin, inside it. The last state is bold with its axes, earlier states are
 // their chains fading toward the background, the start is dashed. Throws std::invalid_argument if a rotation has
 // a non-finite entry or one beyond +-10, a position is non-finite or beyond +-1e6, or the states differ in size.

@@ -98,11 +98,12 @@ TEST(FramesScene, NonRotationsAreRejected) {
   EXPECT_THROW(testing::shared_renderer().frames_png({id}, huge, FramesOptions{}), std::invalid_argument);
 }
 
-// Three bodies hanging below the origin along -y, front view: each body's x axis is drawn in red at its position,
-// the chain between them in gray, and the scene is fitted into the picture (the lowest body inside it).
+// Three bodies hanging below the origin along -z, front view with z up: each body's x axis is drawn in red at its
+// position, the chain between them in gray, and the scene is fitted into the picture (the lowest body inside it).
+// The scene's coordinates (camera's y up) are the world's turned: (x, y, z) -> (x, z, -y).
 TEST(FramesScene, BodiesAreTheirAxesAtTheirPositions) {
   std::vector<BodyFrame> chain;
-  for (int i = 1; i <= 3; ++i) chain.push_back({Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, -0.5 * i, 0)});
+  for (int i = 1; i <= 3; ++i) chain.push_back({Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -0.5 * i)});
   const FramesOptions options{400, 400, 0, 0};
   const DecodedImage image = decode_png(testing::shared_renderer().frames_png({chain}, chain, options));
   const Camera camera(0, 0, 400, 400);
@@ -111,8 +112,9 @@ TEST(FramesScene, BodiesAreTheirAxesAtTheirPositions) {
     return (0.85 / 0.75) * (p - Eigen::Vector3d(0, -0.75, 0));
   };
   for (const BodyFrame& body : chain) {
-    const Point red = camera.project(at(body.position + Eigen::Vector3d(0.08, 0, 0)));
-    EXPECT_TRUE(testing::near(pixel_at(image, red), kAxisColors[0], 2)) << "body at " << body.position.y();
+    const Eigen::Vector3d scene(body.position.x(), body.position.z(), -body.position.y());
+    const Point red = camera.project(at(scene + Eigen::Vector3d(0.08, 0, 0)));
+    EXPECT_TRUE(testing::near(pixel_at(image, red), kAxisColors[0], 2)) << "body at " << body.position.z();
     EXPECT_GT(red.y, 0);
     EXPECT_LT(red.y, 400);
   }
