@@ -29,6 +29,11 @@ struct SolverOptions {
   // 256 x 256 SO(3) basin map's CPU time). Untimed, a result's cpu_seconds is 0 (neither reports it); its wall
   // seconds are kept (the steady clock is read without a system call).
   bool timed = true;
+  // An integrator's stage: the solve ends as soon as its driven residual is down to what rounding alone leaves of
+  // it (a few times the rounding of one evaluation, far below the floor the stall rule accepts), stagnated there:
+  // no later iterate can be told better, and waiting for the stall rule spends iterations that buy nothing (the
+  // RKMK stages stop at their floor likewise).
+  bool stop_at_rounding = false;
 };
 
 // Checks the bounds of its rows in the field table (core/fields.hpp: tol, max_iterations, multistart); throws

@@ -58,6 +58,7 @@ class Stepper {
 
   Stepper(const G& group, VectorField<G>& field, const Tableau& tab, const SolverOptions& opt, Predictor predictor)
       : group_(group), field_(&field), tab_(&tab), opt_(opt), predictor_(predictor) {
+    opt_.stop_at_rounding = true;  // a stage at rounding is solved (SolverOptions::stop_at_rounding)
     if (tab.form == Form::implicit_rkmk) {
       matrix_.emplace(tab);
       weights_ = embedded_weights(tab, matrix_->decoupling().gamma0);

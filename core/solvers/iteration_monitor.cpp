@@ -81,6 +81,7 @@ std::optional<Status> IterationMonitor::record(TraceRecord rec, const Measuremen
     divergence_ = "step ||u|| = " + format_number(step);
     return Status::diverged;
   }
+  if (options_.stop_at_rounding && m.driven <= m.rounding) return Status::stagnated;
   stalled_ = (m.driven > 0.5 * best_ && best_ <= m.floor) ? stalled_ + 1 : 0;
   best_ = std::min(best_, m.driven);
   if (stalled_ >= kStallIterations) return Status::stagnated;

@@ -25,6 +25,7 @@ struct Measurement {
   double driven;        // the residual the iteration drives to 0 (f~ for Version 2 and the fixed point, else f)
   const char* driven_name;  // how the reason names it
   double floor;         // rounding floor of `driven`: below it a non-decreasing residual means stagnation
+  double rounding;      // what rounding alone leaves of `driven` (solver_run.hpp: kRoundingMargin)
 };
 
 class IterationMonitor {

@@ -75,5 +75,30 @@ TEST(ChainIntegrators, DirkAndRadauConvergeToTheFlatRk4ReferenceAtTheirOrders) {
   }
 }
 
+
+// At the default data the joints make the chain stiff (h ||dg|| ~ 10^3 at h = 2^-8): a stage's residual cannot get
+// below ~1e-12 (k = 8) ... 3e-11 (k = 128), above tol = 1e-13, and is there after two Newton iterations from the
+// explicit Lie-Euler prediction. Each stage stops there (SolverOptions::stop_at_rounding) instead of spending
+// iterations on the stall rule: two per stage, four per dirk-cg2 step after the first, at any number of bodies.
+TEST(ChainIntegrators, DirkStagesStopWhereRoundingLeavesThem) {
+  for (int k : {8, 32, 128}) {
+    IntegrateRequest req;
+    req.problem.kind = ProblemKind::chain;
+    req.problem.group = "SExR^k";
+    req.problem.n = k;
+    req.integrator = Integrator::dirk_cg2;
+    req.h = 1.0 / 256;
+    req.t_end = 16.0 / 256;
+    req.reference = false;
+    const IntegrateResult r = integrate(req);
+    ASSERT_EQ(r.status, Status::converged) << "k " << k << ": " << r.reason;
+    ASSERT_EQ(r.steps.size(), 16u);
+    for (std::size_t i = 1; i < r.steps.size(); ++i) {
+      EXPECT_LE(r.steps[i].iterations, 4) << "k " << k << ", step " << i;
+      EXPECT_LE(r.steps[i].residual, 1e-9) << "k " << k << ", step " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lienewton

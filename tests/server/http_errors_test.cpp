@@ -188,15 +188,15 @@ TEST(HttpErrors, OneClientAddressTakesAtMostHalfTheWorkSlots) {
   for (int k = 0; k < 2; ++k) holders.emplace_back([&s] { solve_as(s, "10.0.0.1"); });
   work.wait_for(2);
   auto same = solve_as(s, "10.0.0.1");
-  ASSERT_TRUE(same);
-  EXPECT_EQ(same->status, 429);
+  ASSERT_TRUE(same) << httplib::to_string(same.error());
+  EXPECT_EQ(same->status, 429) << same->body;
   EXPECT_EQ(error_of(same)["code"], "client_over_capacity");
   work.release();
   for (auto& t : holders) t.join();
   // Another address still gets a slot (the hook no longer holds).
   auto other = solve_as(s, "10.0.0.2");
-  ASSERT_TRUE(other);
-  EXPECT_EQ(other->status, 200);
+  ASSERT_TRUE(other) << httplib::to_string(other.error());
+  EXPECT_EQ(other->status, 200) << other->body;
 }
 
 TEST(HttpErrors, XRealIpIsBelievedOnlyFromATrustedFront) {
