@@ -36,8 +36,15 @@ Eigen::SparseMatrix<double> newton_matrix(int k) {
   return m;
 }
 
-void check(benchmark::State& state, const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b,
-           const Eigen::VectorXd& x) {
+// Times factor_and_solve(b) on a, then checks the last solution's residual.
+template <class FactorAndSolve>
+void time_solves(benchmark::State& state, const Eigen::SparseMatrix<double>& a, FactorAndSolve factor_and_solve) {
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(a.rows());
+  Eigen::VectorXd x;
+  for (auto _ : state) {
+    x = factor_and_solve(b);
+    benchmark::DoNotOptimize(x.data());
+  }
   const double residual = (a * x - b).norm() / b.norm();
   state.counters["residual"] = residual;
   state.counters["unknowns"] = static_cast<double>(a.rows());
@@ -47,41 +54,28 @@ void check(benchmark::State& state, const Eigen::SparseMatrix<double>& a, const 
 void NewtonMatrix_dense(benchmark::State& state) {
   const auto a = newton_matrix(static_cast<int>(state.range(0)));
   const Eigen::MatrixXd dense(a);
-  const Eigen::VectorXd b = Eigen::VectorXd::Ones(a.rows());
-  Eigen::VectorXd x;
-  for (auto _ : state) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(dense);
-    x = lu.solve(b);
-    benchmark::DoNotOptimize(x.data());
-  }
-  check(state, a, b, x);
+  time_solves(state, a, [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
+    return Eigen::PartialPivLU<Eigen::MatrixXd>(dense).solve(b);
+  });
 }
 
 void NewtonMatrix_sparse(benchmark::State& state) {
   const auto a = newton_matrix(static_cast<int>(state.range(0)));
-  const Eigen::VectorXd b = Eigen::VectorXd::Ones(a.rows());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.analyzePattern(a);
-  Eigen::VectorXd x;
-  for (auto _ : state) {
+  time_solves(state, a, [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
     lu.factorize(a);
-    x = lu.solve(b);
-    benchmark::DoNotOptimize(x.data());
-  }
-  check(state, a, b, x);
+    return lu.solve(b);
+  });
 }
 
 void NewtonMatrix_newton(benchmark::State& state) {
   const auto a = newton_matrix(static_cast<int>(state.range(0)));
-  const Eigen::VectorXd b = Eigen::VectorXd::Ones(a.rows());
   detail::NewtonLu<double> lu;
-  Eigen::VectorXd x;
-  for (auto _ : state) {
+  time_solves(state, a, [&](const Eigen::VectorXd& b) -> Eigen::VectorXd {
     if (!lu.factorize(a)) state.SkipWithError("singular");
-    x = lu.solve(b);
-    benchmark::DoNotOptimize(x.data());
-  }
-  check(state, a, b, x);
+    return lu.solve(b);
+  });
 }
 
 void sizes(benchmark::internal::Benchmark* b) {

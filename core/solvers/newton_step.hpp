@@ -24,9 +24,9 @@ namespace lienewton {
 inline constexpr int kKrylovThreshold = 16;
 inline constexpr int kMaxKrylovIterations = 300;
 
-// A sparse Newton matrix of at most this dimension is factored dense. Measured on bench/sparse_lu_bench.cpp's
-// block-tridiagonal matrices (12 x 12 blocks, CPU time of factor + solve): 96 unknowns dense 24 us, sparse 39 us
-// (51 us with its rcond estimate); 144: 66 / 61 (80); 192: 141 / 79 (102). Dense up to 12 bodies of SE(3) x R^6.
+// A sparse Newton matrix of at most this dimension is factored dense: the crossover of factor + solve on
+// block-tridiagonal matrices of 12 x 12 blocks, dense LU against sparse LU with its rcond estimate
+// (bench/sparse_lu_bench.cpp; docs/many_bodies.md has the figures). Dense up to 12 bodies of SE(3) x R^6.
 inline constexpr int kDenseLuMaxDim = 144;
 // The bound in force on this thread: kDenseLuMaxDim, unless a test moves it to compare both paths on one system.
 inline int& dense_lu_max_dim() {

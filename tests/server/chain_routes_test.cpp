@@ -59,10 +59,7 @@ TEST_F(ChainRoutes, TheCatalogNamesItsGroupInvariantAndSchema) {
 }
 
 TEST_F(ChainRoutes, BadParametersAre422NamingTheField) {
-  const struct {
-    const char* body;
-    const char* field;
-  } bad[] = {
+  expect_422_naming("/api/v1/integrate", kChain, {
       {R"(,"chain":{"mass":-1}})", "chain.mass"},
       {R"(,"chain":{"length":0}})", "chain.length"},
       {R"(,"chain":{"inertia":[1,0,3]}})", "chain.inertia"},
@@ -70,11 +67,7 @@ TEST_F(ChainRoutes, BadParametersAre422NamingTheField) {
       {R"(,"chain":{"damping":-1}})", "chain.damping"},
       {R"(,"chain":{"gravity":[0,0,-2e9]}})", "chain.gravity"},
       {R"(,"chain":{"tilt":4}})", "chain.tilt"},
-  };
-  for (const auto& b : bad) {
-    const json e = post("/api/v1/integrate", std::string(kChain) + b.body, 422);
-    EXPECT_EQ(e["error"]["field"], b.field) << e.dump();
-  }
+  });
   const json one_body = post("/api/v1/integrate", R"({"problem":"chain","group":"SExR","h":0.01})", 422);
   EXPECT_EQ(one_body["error"]["field"], "group") << one_body.dump();
   json z = json::array();  // the identities side by side as z, beside the tilt that gives y(0)

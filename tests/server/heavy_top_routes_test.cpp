@@ -154,20 +154,13 @@ TEST_F(HeavyTopRoutes, DefaultsComeFromTheTop) {
 }
 
 TEST_F(HeavyTopRoutes, BadParametersAre422NamingTheField) {
-  const struct {
-    const char* body;
-    const char* field;
-  } bad[] = {
+  expect_422_naming("/api/v1/integrate", kTop, {
       {R"(,"heavy_top":{"mass":-1}})", "heavy_top.mass"},
       {R"(,"heavy_top":{"inertia":[1,0,1]}})", "heavy_top.inertia"},
       {R"(,"heavy_top":{"rotation":[[1,0,0],[0,1,0],[0,0.5,1]]}})", "heavy_top.rotation"},
       {R"(,"heavy_top":{"omega":[0,1e7,0]}})", "heavy_top.omega"},
       {R"(,"z":[[1,0,0,0,0,0,0],[0,1,0,0,0,0,0],[0,0,1,0,0,0,0],[0,0,0,1,0,0,0],[0,0,0,0,1,0,0],[0,0,0,0,0,1,0],[0,0,0,0,0,0,1]]})", "z"},
-  };
-  for (const auto& b : bad) {
-    const json e = post("/api/v1/integrate", std::string(kTop) + b.body, 422);
-    EXPECT_EQ(e["error"]["field"], b.field) << e.dump();
-  }
+  });
   const json so = post("/api/v1/integrate", R"({"problem":"heavy-top","h":0.1})", 422);
   EXPECT_EQ(so["error"]["field"], "group") << so.dump();
   EXPECT_NE(so["error"]["message"].get<std::string>().find("SOxR"), std::string::npos) << so.dump();

@@ -74,10 +74,7 @@ TEST_F(StiffBodyRoutes, TheCatalogNamesItsGroupAndNoInvariants) {
 }
 
 TEST_F(StiffBodyRoutes, BadParametersAre422NamingTheField) {
-  const struct {
-    const char* body;
-    const char* field;
-  } bad[] = {
+  expect_422_naming("/api/v1/integrate", kBody, {
       {R"(,"stiff_body":{"k":-1}})", "stiff_body.k"},
       {R"(,"stiff_body":{"c":-1}})", "stiff_body.c"},
       {R"(,"stiff_body":{"J":[1,0,3]}})", "stiff_body.J"},
@@ -85,11 +82,7 @@ TEST_F(StiffBodyRoutes, BadParametersAre422NamingTheField) {
       {R"(,"stiff_body":{"rotation":[[1,0,0],[0,1,0],[0,0.5,1]]}})", "stiff_body.rotation"},
       {R"(,"stiff_body":{"rotation":[[1,0,0],[0,1,0],[0,0,-1]]}})", "stiff_body.rotation"},
       {R"(,"z":[[1,0,0,0,0,0,0],[0,1,0,0,0,0,0],[0,0,1,0,0,0,0],[0,0,0,1,0,0,0],[0,0,0,0,1,0,0],[0,0,0,0,0,1,0],[0,0,0,0,0,0,1]]})", "z"},
-  };
-  for (const auto& b : bad) {
-    const json e = post("/api/v1/integrate", std::string(kBody) + b.body, 422);
-    EXPECT_EQ(e["error"]["field"], b.field) << e.dump();
-  }
+  });
   const json so = post("/api/v1/integrate", R"({"problem":"stiff-body","h":0.1})", 422);
   EXPECT_EQ(so["error"]["field"], "group") << so.dump();
   // Not a number, or a name the object does not have: 400 naming it.

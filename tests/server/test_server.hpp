@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -114,6 +115,18 @@ class SharedServerTest : public ::testing::Test {
     if (!res) return nlohmann::json();
     EXPECT_EQ(res->status, status) << res->body;
     return nlohmann::json::parse(res->body);
+  }
+  // Each request (`opening`, then a case's rest) posted to `path` is a 422 naming the case's field.
+  struct BadField {
+    const char* rest;
+    const char* field;
+  };
+  static void expect_422_naming(const std::string& path, const std::string& opening,
+                                std::initializer_list<BadField> cases) {
+    for (const BadField& c : cases) {
+      const nlohmann::json e = post(path, opening + c.rest, 422);
+      EXPECT_EQ(e["error"]["field"], c.field) << e.dump();
+    }
   }
   static inline TestServer* server_ = nullptr;
 };
