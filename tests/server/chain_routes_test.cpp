@@ -82,5 +82,46 @@ TEST_F(ChainRoutes, BadParametersAre422NamingTheField) {
   EXPECT_EQ(unknown["error"]["field"], "chain.k") << unknown.dump();
 }
 
+// Every route an integrable problem runs on takes the chain: a streamed integration, a work-precision diagram, a
+// stability sweep of its implicit Euler equation over h and k, and the frames and invariants renders.
+TEST_F(ChainRoutes, RunsOnEveryIntegrationRoute) {
+  auto c = client();
+  int steps = 0;
+  std::string terminal;
+  testing::post_lines(c, "/api/v1/integrate", std::string(kChain) + "}", "application/x-ndjson",
+                      [&](const std::string& line) {
+                        const json record = json::parse(line);
+                        if (record["type"] == "step") ++steps;
+                        if (record["type"] != "step") terminal = record["type"];
+                        return true;
+                      });
+  EXPECT_EQ(steps, 64);
+  EXPECT_EQ(terminal, "result");
+
+  const json wp = post("/api/v1/work-precision", R"({"problem":"chain","group":"SExR^2","t_end":0.125,)"
+                                                  R"("h":[0.0078125,0.00390625],"choices":[{"integrator":"dirk-cg2"},)"
+                                                  R"({"integrator":"rkmk-radau3"}]})");
+  ASSERT_EQ(wp["series"].size(), 2u) << wp.dump().substr(0, 500);
+  for (const json& series : wp["series"])
+    for (const json& p : series["points"]) {
+      EXPECT_EQ(p["status"], "converged") << series["choice"].dump();
+      EXPECT_GT(p["error"].get<double>(), 0.0) << series["choice"].dump();
+    }
+
+  const json sweep = post("/api/v1/sweep", R"({"problem":"chain","group":"SExR^k","n":[2,3],"h":[0.001,0.01],)"
+                                           R"("methods":["newton-group"]})");
+  ASSERT_EQ(sweep["cells"].size(), 4u) << sweep.dump().substr(0, 500);
+  for (const json& cell : sweep["cells"])
+    EXPECT_TRUE(cell["status"] == "converged" || cell["status"] == "stagnated") << cell.dump();
+
+  for (const char* route : {"/api/v1/render/frames", "/api/v1/render/invariants"}) {
+    auto png = c.Post(route, std::string(kChain) + R"(,"chain":{"damping":0},"frames":4,"width":96,"height":96})",
+                      "application/json");
+    ASSERT_TRUE(png);
+    EXPECT_EQ(png->status, 200) << route << ": " << png->body;
+    EXPECT_EQ(png->body.substr(1, 3), "PNG") << route;
+  }
+}
+
 }  // namespace
 }  // namespace lienewton::service
