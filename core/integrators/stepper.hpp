@@ -120,7 +120,9 @@ class Stepper {
       Element z = y;
       for (int j = 0; j < i; ++j) z = group_.times_exp(z, tab_->a(i, j) * hg[static_cast<std::size_t>(j)]);
       const auto eq = Equation<G>::implicit_euler(group_, z, dt * tab_->a(i, i), *field_);
-      const SolveResult stage = continued_root(opt_.method, eq, opt_, {}, predictor_ == Predictor::none);
+      const SolveResult stage = continued_root(opt_.method, eq, opt_, {},
+                                               predictor_ == Predictor::none ? FirstTry::z
+                                                                             : FirstTry::tangent_then_linear);
       rec.iterations += stage.total_iterations();
       if (opt_.method != Method::fixed_point) used(stage.linear_solver);
       rec.residual = std::max(rec.residual, stage.residual);

@@ -22,6 +22,7 @@
 //               on with a shorter step.
 // The path's own Newton uses the exact D_v F (the search must know the branch's geometry, whatever differential
 // the method uses); the caller times the whole search. Only the method's solve at h decides the result's status, y, residual and trace.
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,11 @@ inline bool contracted_to_root(const SolveResult& r, Method method) {
   return true;
 }
 
+// Where the method's first solve at h starts: at the tangent's prediction (the solve route); at z itself (an
+// integrator's predictor none); or at the tangent's and, where that fails on a stiff stage, at the linearly implicit
+// value (an integrator's stages: see BranchPath::linearly_implicit).
+enum class FirstTry { tangent, z, tangent_then_linear };
+
 template <LieGroup G>
 class BranchPath {
  public:
@@ -91,11 +97,12 @@ class BranchPath {
   // The method's solve of an equation (started where it says), with its callback.
   using Solve = std::function<SolveResult(const Equation<G>&, const TraceCallback&)>;
 
-  // eq: the implicit Euler equation at the requested h; method: the request's (for the contraction test);
-  // first_from_z: the first solve at h starts at z itself instead of the tangent's prediction (predictor none).
-  BranchPath(const Equation<G>& eq, Method method, const TraceCallback& cb, Solve solve, bool first_from_z = false)
+  // eq: the implicit Euler equation at the requested h; method: the request's (for the contraction test).
+  BranchPath(const Equation<G>& eq, Method method, const TraceCallback& cb, Solve solve,
+             FirstTry first_try = FirstTry::tangent)
       : eq_(eq), group_(eq.group()), method_(method), cb_(cb), solve_(std::move(solve)), h_(eq.h()),
-        q_(eq.group().dim()), first_from_z_(first_from_z),
+        q_(eq.group().dim()), first_from_z_(first_try == FirstTry::z),
+        then_linear_(first_try == FirstTry::tangent_then_linear),
         dense_(!detail::use_krylov(eq.group(), LinearSolver::auto_select)) {}
 
   SolveResult run() {
@@ -111,6 +118,9 @@ class BranchPath {
         const double to_h = (h_ - x.h) / t.th;
         if (auto r = at_h(Point{x.v + to_h * t.v, h_}, to_h * t.v.norm(), PathStep{t.th, to_h}, first))
           return finish(std::move(*r));
+        if (first && then_linear_) {
+          if (auto r = linearly_implicit()) return finish(std::move(*r));
+        }
         first = false;
         ds = to_h / 2;
         if (cancellation_requested()) return stopped(x, "cancelled");
@@ -218,6 +228,24 @@ class BranchPath {
     l.d_tau = -Eigen::VectorXd(g);
     l.scale = 1.0 + x.v.norm() + x.h * g.norm();
     return l;
+  }
+
+  // A stiff stage (h ||dg_z||_F > 1), where the tangent's prediction is no guide, predicted by its linearly implicit
+  // value v = (I - h dg_z)^-1 h g(z), the zero of F linearised at (0, 0) (3.22): when I - tau dg_z stays regular for
+  // every tau in [0, h] (no eigenvalue mu of dg_z with h |mu| >= 1 and Re mu > 0), the linearisation's root is
+  // continuous from v = 0, so a root within the acceptance radius of v, reached by contracting steps, is the
+  // continued one, as for an implicit RKMK stage (rkmk_stages.hpp). Its linear solve counts as an iteration.
+  std::optional<SolveResult> linearly_implicit() {
+    const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
+    if (!(h_ * j.norm() > 1.0)) return std::nullopt;
+    const Eigen::VectorXcd mu = j.eigenvalues();
+    for (Eigen::Index i = 0; i < mu.size(); ++i)
+      if (h_ * std::abs(mu[i]) >= 1.0 && mu[i].real() > 0.0) return std::nullopt;
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(q_, q_) - h_ * j;
+    const Vector v(a.partialPivLu().solve(Eigen::VectorXd(h_ * eq_.field()->g(eq_.z()))));
+    ++extra_iterations_;
+    if (!v.allFinite()) return std::nullopt;
+    return at_h(Point{v, h_}, v.norm(), PathStep{}, false);
   }
 
   Tangent tangent_at_start() const {
@@ -469,6 +497,7 @@ class BranchPath {
   const double h_;
   const int q_;
   const bool first_from_z_;
+  const bool then_linear_;
   const bool dense_;  // the path's bordered systems are solved densely: only below the matrix-free size
   bool cb_ok_ = true;
   std::vector<PathPoint> points_;

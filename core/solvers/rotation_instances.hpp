@@ -16,7 +16,7 @@
   kind template SolveResult newton_group<G>(const Equation<G>&, const SolverOptions&, const TraceCallback&);   \
   kind template SolveResult newton_algebra<G>(const Equation<G>&, const SolverOptions&, const TraceCallback&); \
   kind template SolveResult run_method<G>(Method, const Equation<G>&, const SolverOptions&, const TraceCallback&); \
-  kind template SolveResult continued_root<G>(Method, const Equation<G>&, const SolverOptions&, const TraceCallback&, bool);
+  kind template SolveResult continued_root<G>(Method, const Equation<G>&, const SolverOptions&, const TraceCallback&, FirstTry);
 
 namespace lienewton {
 LIENEWTON_SOLVERS_ON(extern, SO3Group)

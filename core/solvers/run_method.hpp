@@ -22,16 +22,16 @@ SolveResult run_directly(Method method, const Equation<G>& eq, const SolverOptio
   return {};
 }
 
-// The root continued from z at eq's h, the method solving at h (continuation.hpp). first_from_z: the method's
-// first solve at h starts at z rather than at the tangent's prediction (an integrator's predictor none).
+// The root continued from z at eq's h, the method solving at h (continuation.hpp), its first solve started as
+// first_try says.
 template <LieGroup G>
 SolveResult continued_root(Method method, const Equation<G>& eq, const SolverOptions& opt, const TraceCallback& cb,
-                           bool first_from_z = false) {
+                           FirstTry first_try = FirstTry::tangent) {
   SolverOptions near = opt;  // from a prediction the method follows the root near it: no watchdog jumps
   near.watchdog = false;
   return BranchPath<G>(eq, method, cb,
                        [&](const Equation<G>& e, const TraceCallback& c) { return run_directly(method, e, near, c); },
-                       first_from_z)
+                       first_try)
       .run();
 }
 

@@ -113,7 +113,7 @@ TEST(SparseNewton, ContinuationLandsWhereTheDenseLuLands) {
       const DenseLuBound scope(bound);
       SolverOptions opt;
       opt.tol = 1e-12;
-      results.push_back(continued_root(Method::newton_group, eq, opt, {}, false));
+      results.push_back(continued_root(Method::newton_group, eq, opt, {}, FirstTry::tangent));
     }
     EXPECT_EQ(results[0].status, results[1].status) << h << ": " << results[0].reason << " / " << results[1].reason;
     if (results[0].status == Status::converged) {
