@@ -20,6 +20,7 @@
 #include "render/renderer.hpp"
 #include "server/http_errors.hpp"
 #include "server/json_codec.hpp"
+#include "server/cli/command_help.hpp"
 #include "server/cli/paper_figures.hpp"
 #include "server/render_requests.hpp"
 #ifdef LIENEWTON_MPI
@@ -50,11 +51,13 @@ constexpr const char* kUsage =
     "  render basins    basin request (plus width/height) -> PNG basin map on stdout\n"
     "  figures [DIFF]   the paper's Figures 5.1 and 5.2 as Markdown tables (no stdin): the default sweep of\n"
     "                   paper-linear and paper-sine, differential DIFF (default finite-difference, as the paper)\n"
-    "  --help           this text\n"
+    "  --help           this text; COMMAND --help (or help COMMAND): the fields COMMAND takes\n"
+    "  --version        the version\n"
     "\n"
     "Any request field may be given as a flag instead of (or over) the JSON on stdin, typed by the request\n"
     "contract (/openapi.json): `lienewton solve --n 8 --h 2 --method newton-group --pretty`; a list as 2,3,4;\n"
-    "an object or matrix as JSON; - or _ in the name alike. Stdin is not read when it is a terminal.\n"
+    "an object or matrix as JSON; - or _ in the name alike. Stdin is not read when it is a terminal; with\n"
+    "nothing on it (a terminal, </dev/null) a command runs its defaults and the flags given.\n"
     "--pretty indents the JSON result.\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
@@ -154,12 +157,21 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
   return out;
 }
 
+// The fields `lienewton command [sub]` takes: its route's rows, and a render's picture options.
+std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub) {
+  std::vector<const fields::Field*> out = fields::fields_of(route_of(command, sub));
+  if (command == "render")
+    for (const fields::Field& p : picture_fields())
+      if (p.takes(picture_route_of(sub))) out.push_back(&p);
+  return out;
+}
+
 int run(const std::string& command, const std::string& sub, const Flags& flags, const Part& part) {
   std::string text;
-  // With flags the request may come from them alone: a terminal on stdin is not waited on.
-  const bool read_stdin = part.prints && !(flags.fields.size() > 0 && isatty(STDIN_FILENO));
-  if (read_stdin) text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos && !flags.fields.empty()) text = "{}";
+  // A terminal on stdin is never waited on; nothing on stdin is the command's defaults (and the flags).
+  if (part.prints && !isatty(STDIN_FILENO))
+    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) text = "{}";
   json body = parse_body(part.share_input(std::move(text)));
   if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
@@ -234,6 +246,20 @@ int figures(const std::string& differential_name, const Part& part) {
   return 0;
 }
 
+bool plain_command(const std::string& c) {
+  return c == "solve" || c == "sweep" || c == "basins" || c == "integrate" || c == "work-precision";
+}
+bool render_command(const std::string& sub) {
+  return sub == "frames" || sub == "heatmap" || sub == "basins" || sub == "residuals" || sub == "work-precision" ||
+         sub == "invariants";
+}
+// --help or -h among the arguments after the command.
+bool asks_help(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -244,7 +270,11 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   const std::string command = argc > 1 ? argv[1] : "";
   const std::string sub = argc > 2 ? argv[2] : "";
-  if (command == "--help" || command == "-h" || command == "help") {
+  if (command == "--version" || command == "version") {
+    std::cout << "lienewton " << LIENEWTON_VERSION << "\n";
+    return 0;
+  }
+  if ((command == "help" && argc <= 2) || command == "--help" || command == "-h") {
     std::cout << kUsage;
     return 0;
   }
@@ -261,12 +291,18 @@ int main(int argc, char** argv) {
   }
 #endif
   if (command == "figures" && argc <= 3) return figures(sub, part);
-  const bool plain = command == "solve" || command == "sweep" || command == "basins" || command == "integrate" ||
-                     command == "work-precision";
-  const bool render = command == "render" && (sub == "frames" || sub == "heatmap" || sub == "basins" ||
-                                              sub == "residuals" || sub == "work-precision" ||
-                                              sub == "invariants");
+  const bool plain = plain_command(command);
+  const bool render = command == "render" && render_command(sub);
   const bool merging = command == "merge" && argc > 2;
+  if (command == "help" || ((plain || render) && asks_help(argc, argv))) {
+    const bool about = command == "help";
+    const std::string what = about ? sub : command, what_sub = about ? (argc > 3 ? argv[3] : "") : sub;
+    const bool known = plain_command(what) || (what == "render" && render_command(what_sub));
+    if (!known) return fail(2, "usage", "", "no command " + what + "; see lienewton --help", part.prints);
+    if (part.prints)
+      std::cout << cli::command_help(what + (what == "render" ? " " + what_sub : ""), command_fields(what, what_sub));
+    return 0;
+  }
   if (!plain && !render && !merging) {
     if (part.prints) std::cerr << kUsage;
     return fail(2, "usage", "", "unknown command " + command + (command == "render" ? " " + sub : "") +

@@ -3,7 +3,8 @@
 # by the field table: integers, numbers, enum strings, lists), flags override stdin, --pretty prints the same JSON
 # indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` (also
 # without choices) and `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text;
-# heavy-top and stiff-body integrate; t_end may exceed the server's cap.
+# heavy-top and stiff-body integrate; t_end may exceed the server's cap; nothing on stdin (empty or a terminal) runs
+# the defaults; COMMAND --help lists the fields, --version the version.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -56,4 +57,20 @@ png "$dir/invariants.png" || { echo "render invariants: not a PNG"; exit 1; }
   --stiff-body '{"k":1e5,"c":1e5}' < /dev/null > "$dir/stiff.json"
 jq -e '.status == "converged" and .energy_drift == null and (.steps | length) == 4' "$dir/stiff.json" > /dev/null \
   || { echo "integrate stiff-body: $(head -c 300 "$dir/stiff.json")"; exit 1; }
-echo "flags, --pretty and the render commands behave"
+# Nothing on stdin runs the command's defaults: empty (</dev/null) or a terminal (a pty by script(1)), which is
+# never waited on.
+"$bin" solve < /dev/null > "$dir/defaults.json"
+jq -e '.status == "converged"' "$dir/defaults.json" > /dev/null || { echo "solve </dev/null: $(head -c 300 "$dir/defaults.json")"; exit 1; }
+timeout 60 script -qec "$bin solve" /dev/null > "$dir/tty.txt" || { echo "solve on a terminal: no answer"; exit 1; }
+grep -q '"status":"converged"' "$dir/tty.txt" || { echo "solve on a terminal: $(head -c 300 "$dir/tty.txt")"; exit 1; }
+# Each command's --help (or help COMMAND) lists its fields from the request contract; --version.
+"$bin" solve --help > "$dir/help.txt"
+grep -q '^  --n INTEGER$' "$dir/help.txt" && grep -q 'default 1e-13' "$dir/help.txt" \
+  || { echo "solve --help: $(head -c 300 "$dir/help.txt")"; exit 1; }
+"$bin" help render frames | grep -q '^  --azimuth-deg NUMBER$' || { echo "help render frames: no --azimuth-deg"; exit 1; }
+"$bin" help integrate | grep -q '^  --integrator NAME$' || { echo "help integrate: no --integrator"; exit 1; }
+status=0
+"$bin" help solvee > /dev/null 2> "$dir/err" || status=$?
+[[ $status -eq 2 ]] || { echo "help of no command: status $status"; exit 1; }
+"$bin" --version | grep -Eq '^lienewton [0-9]+\.[0-9]+\.[0-9]+$' || { echo "--version: $("$bin" --version)"; exit 1; }
+echo "flags, --pretty, --help, --version, empty stdin and the render commands behave"
