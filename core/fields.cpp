@@ -209,7 +209,8 @@ std::vector<Field> build() {
                                    "(w, r, v); SExR^k: (SE(3) x R^6)^k, k = n rigid bodies (n from 2 to 128, "
                                    "\"SExR^8\" is short for n = 8), z = diag(y1, ..., yk) of SExR's 11 x 11 blocks, "
                                    "coordinates body by body. The built-in problems are defined on SO, heavy-top and "
-                                   "stiff-body on SOxR, chain on SExR^k; g (your own field) on every group",
+                                   "stiff-body on SOxR, chain on SExR^k, which a request naming no group takes; g "
+                                   "(your own field) on every group",
                     .values = registered_group_names(), .default_value = std::string("SO")});
   t.push_back(integer(n, solve | integrate | work_precision, {&ProblemSpec::n}, Cap::n));
   t.push_back(basin_n);

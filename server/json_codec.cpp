@@ -2,6 +2,7 @@
 
 #include "core/fields.hpp"
 #include "core/group_registry.hpp"
+#include "core/problems.hpp"
 #include "core/validation.hpp"
 
 #include <algorithm>
@@ -441,10 +442,27 @@ json with_power_shorthand(const json& body) {
   return out;
 }
 
+// A built-in problem written for one group ("problem": "heavy-top": SOxR; "chain": SExR^k) implies it when the
+// request names no group and no program of its own; a group given is checked against it (validation).
+json with_implied_group(const json& body) {
+  if (!body.is_object() || !body.contains("problem") || !body["problem"].is_string() ||
+      (body.contains("group") && !body["group"].is_null()) || (body.contains("g") && !body["g"].is_null()))
+    return body;
+  for (ProblemKind kind : kAllProblems) {
+    if (body["problem"] != to_string(kind)) continue;
+    const std::optional<std::string> group = required_group(kind);
+    if (!group) return body;
+    json out = body;
+    out["group"] = *group;
+    return out;
+  }
+  return body;  // not a problem's name: its row refuses it
+}
+
 // A route's request: every row the route takes, read into the request struct.
 template <class Request>
 Request read_request(const json& given, fields::Route route, const Limits& limits) {
-  const json body = with_power_shorthand(given);
+  const json body = with_power_shorthand(with_implied_group(given));
   Request request;
   Reading r{limits};
   r.n = &part<ProblemSpec>(request)->n;

@@ -161,9 +161,13 @@ TEST_F(HeavyTopRoutes, BadParametersAre422NamingTheField) {
       {R"(,"heavy_top":{"omega":[0,1e7,0]}})", "heavy_top.omega"},
       {R"(,"z":[[1,0,0,0,0,0,0],[0,1,0,0,0,0,0],[0,0,1,0,0,0,0],[0,0,0,1,0,0,0],[0,0,0,0,1,0,0],[0,0,0,0,0,1,0],[0,0,0,0,0,0,1]]})", "z"},
   });
-  const json so = post("/api/v1/integrate", R"({"problem":"heavy-top","h":0.1})", 422);
+  // The top's group is implied when the request names none, and another one is refused naming the one it needs.
+  const json so = post("/api/v1/integrate", R"({"problem":"heavy-top","group":"SO","h":0.1})", 422);
   EXPECT_EQ(so["error"]["field"], "group") << so.dump();
   EXPECT_NE(so["error"]["message"].get<std::string>().find("SOxR"), std::string::npos) << so.dump();
+  const json implied = post("/api/v1/integrate", R"({"problem":"heavy-top","h":0.0078125,"t_end":0.0625})");
+  EXPECT_EQ(implied["status"], "converged") << implied.dump().substr(0, 300);
+  EXPECT_EQ(matrix_from_rows(implied["y"]).rows(), 7);
   // Parameters that change the top change its run: a lighter top has less potential energy to trade.
   const json light = post("/api/v1/integrate", std::string(kTop) + R"(,"heavy_top":{"mass":1,"gravity":[0,0,-1]}})");
   ASSERT_EQ(light["status"], "converged");

@@ -83,8 +83,10 @@ TEST_F(StiffBodyRoutes, BadParametersAre422NamingTheField) {
       {R"(,"stiff_body":{"rotation":[[1,0,0],[0,1,0],[0,0,-1]]}})", "stiff_body.rotation"},
       {R"(,"z":[[1,0,0,0,0,0,0],[0,1,0,0,0,0,0],[0,0,1,0,0,0,0],[0,0,0,1,0,0,0],[0,0,0,0,1,0,0],[0,0,0,0,0,1,0],[0,0,0,0,0,0,1]]})", "z"},
   });
-  const json so = post("/api/v1/integrate", R"({"problem":"stiff-body","h":0.1})", 422);
+  const json so = post("/api/v1/integrate", R"({"problem":"stiff-body","group":"SO","h":0.1})", 422);
   EXPECT_EQ(so["error"]["field"], "group") << so.dump();
+  const json implied = post("/api/v1/integrate", R"({"problem":"stiff-body","h":0.0625,"t_end":0.25})");
+  EXPECT_EQ(implied["status"], "converged") << implied.dump().substr(0, 300) << ": its group SOxR is implied";
   // Not a number, or a name the object does not have: 400 naming it.
   const json text = post("/api/v1/integrate", std::string(kBody) + R"(,"stiff_body":{"k":"stiff"}})", 400);
   EXPECT_EQ(text["error"]["field"], "stiff_body.k") << text.dump();
