@@ -2,6 +2,7 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -58,15 +59,17 @@ constexpr const char* kUsage =
     "contract (/openapi.json): `lienewton solve --n 8 --h 2 --method newton-group --pretty`; a list as 2,3,4;\n"
     "an object or matrix as JSON; - or _ in the name alike. Stdin is not read when it is a terminal; with\n"
     "nothing on it (a terminal, </dev/null) a command runs its defaults and the flags given.\n"
-    "--pretty indents the JSON result.\n"
+    "--pretty indents the JSON result; --out FILE writes the answer to FILE (whole, or not at all) instead of stdout,\n"
+    "which never takes a picture when it is a terminal.\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
     "Built with -DLIENEWTON_MPI=ON, `mpirun -n P lienewton sweep|basins|figures` (or srun) spreads the cells or\n"
     "rows over P processes, one item at a time as they finish; rank 0 reads stdin and prints the same output.\n"
     "Exit status: 0 with the result (also when the solve did not converge: see its status), 2 for an invalid\n"
     "request or usage -- then a JSON error {\"error\":{\"code\",\"field\",\"message\"}} naming the field is\n"
-    "printed on stderr (never stdout, which may carry a PNG) -- and 1 when the work could not be done\n"
-    "(renderer unavailable, internal error).\n";
+    "printed on stderr (never stdout, which may carry a PNG; a sentence instead when stderr is a terminal; a\n"
+    "misspelt flag is told its nearest field) -- and 1 when the work could not be done (renderer unavailable,\n"
+    "internal error).\n";
 
 // How this process takes part in a command: alone, or as one rank of an MPI job whose rank 0 reads the request,
 // hands out the cells or rows (farm) and prints; the other ranks compute and print nothing.
@@ -76,14 +79,67 @@ struct Part {
   std::function<std::string(std::string)> share_input = [](std::string text) { return text; };
 };
 
+// An error on stderr: the JSON document for a program reading it, a sentence for a person at a terminal.
+void print_error(const json& body) {
+  if (!isatty(STDERR_FILENO)) {
+    std::cerr << dump(body) << "\n";
+    return;
+  }
+  const json& e = body["error"];
+  std::cerr << "lienewton: " << e.value("message", std::string("error"));
+  if (e.contains("line") && e["line"].is_number())
+    std::cerr << " (line " << e["line"].get<int>() << ", column " << e.value("column", 0) << ")";
+  std::cerr << "\n";
+}
+
 int fail(int status, std::string_view code, std::string_view field, std::string_view message, bool prints = true) {
-  if (prints) std::cerr << dump(error_body(code, field, message)) << "\n";
+  if (prints) print_error(error_body(code, field, message));
   return status;
 }
 
-void write_png(const std::vector<unsigned char>& png) {
-  std::fwrite(png.data(), 1, png.size(), stdout);
-  std::fflush(stdout);
+// The answer, on stdout or, with --out FILE, into FILE: written to a temporary beside it and renamed, so that FILE
+// is either the whole answer or untouched.
+void emit(const std::string& bytes, const std::optional<std::string>& out) {
+  if (!out) {
+    std::fwrite(bytes.data(), 1, bytes.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  const std::string part = *out + ".part-" + std::to_string(getpid());
+  {
+    std::ofstream file(part, std::ios::binary);
+    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!file.flush()) {
+      std::remove(part.c_str());
+      throw ApiError(500, "output_failed", "out", "cannot write " + *out);
+    }
+  }
+  if (std::rename(part.c_str(), out->c_str()) != 0) {
+    std::remove(part.c_str());
+    throw ApiError(500, "output_failed", "out", "cannot write " + *out);
+  }
+}
+
+// The closest of `names` to a misspelt `name` (at most a third of its letters changed), if any.
+std::optional<std::string> nearest(const std::string& name, const std::vector<std::string>& names) {
+  std::optional<std::string> best;
+  std::size_t best_distance = name.size() / 3 + 1;
+  for (const std::string& candidate : names) {
+    // Levenshtein distance, one row at a time.
+    std::vector<std::size_t> row(candidate.size() + 1);
+    for (std::size_t j = 0; j <= candidate.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= name.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= candidate.size(); ++j) {
+        const std::size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (name[i - 1] == candidate[j - 1] ? 0 : 1)});
+        diagonal = up;
+      }
+    }
+    if (row.back() < best_distance) best_distance = row.back(), best = candidate;
+  }
+  return best;
 }
 
 // The command's route in the field table, and a render command's picture options (picture_fields()).
@@ -130,15 +186,23 @@ json flag_value(const fields::Field& f, const std::string& text) {
 struct Flags {
   json fields = json::object();
   bool pretty = false;
+  std::optional<std::string> out;  // --out FILE
 };
 
-// --name value pairs (and --pretty) after the command, each name a field the command's route takes.
+std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub);
+
+// --name value pairs (and --pretty, --out FILE) after the command, each name a field the command's route takes.
 Flags read_flags(const std::vector<std::string>& args, const std::string& command, const std::string& sub) {
   Flags out;
   const bool render = command == "render";
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--pretty") {
       out.pretty = true;
+      continue;
+    }
+    if (args[i] == "--out") {
+      if (i + 1 >= args.size()) throw ApiError(400, "usage", "out", "--out needs a file name");
+      out.out = args[++i];
       continue;
     }
     if (args[i].rfind("--", 0) != 0 || args[i].size() < 3)
@@ -150,7 +214,15 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
       for (const fields::Field& p : picture_fields())
         if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
     }
-    if (!f) throw ApiError(400, "usage", name, "lienewton " + command + (render ? " " + sub : "") + " takes no field " + name);
+    if (!f) {
+      std::vector<std::string> names{"pretty", "out"};
+      for (const fields::Field* field : command_fields(command, sub)) names.push_back(field->name);
+      const std::optional<std::string> guess = nearest(name, names);
+      std::string dashed = guess.value_or("");
+      for (char& c : dashed) c = c == '_' ? '-' : c;
+      throw ApiError(400, "usage", name, "lienewton " + command + (render ? " " + sub : "") + " takes no field " + name +
+                                             (guess ? "; did you mean --" + dashed + "?" : "") + " (see --help)");
+    }
     if (i + 1 >= args.size()) throw ApiError(400, "usage", name, "--" + args[i].substr(2) + " needs a value");
     out.fields[name] = flag_value(*f, args[++i]);
   }
@@ -167,6 +239,8 @@ std::vector<const fields::Field*> command_fields(const std::string& command, con
 }
 
 int run(const std::string& command, const std::string& sub, const Flags& flags, const Part& part) {
+  if (command == "render" && !flags.out && part.prints && isatty(STDOUT_FILENO))
+    throw ApiError(400, "usage", "", "a picture is not written to a terminal: redirect stdout or give --out FILE");
   std::string text;
   // A terminal on stdin is never waited on; nothing on stdin is the command's defaults (and the flags).
   if (part.prints && !isatty(STDIN_FILENO))
@@ -196,10 +270,12 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
                                  : sub == "work-precision" ? render_work_precision
                                  : sub == "invariants"     ? render_invariants
                                                            : render_heatmap;
-    write_png(draw(body, limits, renderer, {}));
+    const std::vector<unsigned char> picture = draw(body, limits, renderer, {});
+    emit(std::string(picture.begin(), picture.end()), flags.out);
     return 0;
   }
-  if (part.prints) std::cout << (flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) << "\n";
+  if (part.prints)
+    emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
   return 0;
 }
 
@@ -315,7 +391,7 @@ int main(int argc, char** argv) {
     const Flags flags = read_flags(std::vector<std::string>(argv + (render ? 3 : 2), argv + argc), command, sub);
     return run(command, sub, flags, part);
   } catch (const RequestError& e) {
-    if (prints) std::cerr << dump(error_body(e)) << "\n";  // with a program's line and column
+    if (prints) print_error(error_body(e));  // with a program's line and column
     return 2;
   } catch (const ApiError& e) {
     return fail(e.status() < 500 ? 2 : 1, e.code(), e.field(), e.what(), prints);

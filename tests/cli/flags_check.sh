@@ -4,7 +4,8 @@
 # indented; an unknown field is refused naming it (exit 2); `render residuals`, `render work-precision` (also
 # without choices) and `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text;
 # heavy-top and stiff-body integrate; t_end may exceed the server's cap; nothing on stdin (empty or a terminal) runs
-# the defaults; COMMAND --help lists the fields, --version the version.
+# the defaults; COMMAND --help lists the fields, --version the version; a misspelt flag gets a suggestion, an error
+# on a terminal is a sentence, a picture is never written to one, --out FILE is the whole answer or nothing.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -73,4 +74,25 @@ status=0
 "$bin" help solvee > /dev/null 2> "$dir/err" || status=$?
 [[ $status -eq 2 ]] || { echo "help of no command: status $status"; exit 1; }
 "$bin" --version | grep -Eq '^lienewton [0-9]+\.[0-9]+\.[0-9]+$' || { echo "--version: $("$bin" --version)"; exit 1; }
-echo "flags, --pretty, --help, --version, empty stdin and the render commands behave"
+# A misspelt flag is told its nearest field; on a terminal an error is a sentence, not JSON.
+status=0
+"$bin" solve --methd newton-group < /dev/null 2> "$dir/err" > /dev/null || status=$?
+[[ $status -eq 2 ]] && jq -e '.error.field == "methd" and (.error.message | contains("did you mean --method?"))' \
+  "$dir/err" > /dev/null || { echo "misspelt flag: status $status, $(cat "$dir/err")"; exit 1; }
+status=0
+script -qec "$bin solve --methd newton-group" /dev/null > "$dir/tty-err.txt" || status=$?
+[[ $status -eq 2 ]] && grep -q '^lienewton: lienewton solve takes no field methd; did you mean --method?' "$dir/tty-err.txt" \
+  && ! grep -q '{"error"' "$dir/tty-err.txt" || { echo "error on a terminal: status $status, $(cat "$dir/tty-err.txt")"; exit 1; }
+# No picture on a terminal; --out FILE holds the whole answer or, on an error, nothing.
+status=0
+script -qec "$bin render residuals --n 3 --h 0.5" /dev/null > "$dir/tty-png.txt" || status=$?
+[[ $status -eq 2 ]] && grep -q 'not written to a terminal' "$dir/tty-png.txt" \
+  || { echo "PNG to a terminal: status $status, $(head -c 200 "$dir/tty-png.txt")"; exit 1; }
+"$bin" render residuals --n 3 --h 0.5 --out "$dir/out.png" < /dev/null > "$dir/stdout.txt"
+png "$dir/out.png" && [[ ! -s "$dir/stdout.txt" ]] || { echo "render --out: no PNG in the file or bytes on stdout"; exit 1; }
+"$bin" solve --out "$dir/out.json" < /dev/null
+cmp <(timeless "$dir/out.json") <(timeless "$dir/defaults.json") || { echo "solve --out differs from stdout"; exit 1; }
+status=0
+"$bin" solve --h abc --out "$dir/bad.json" < /dev/null 2> /dev/null || status=$?
+[[ $status -eq 2 ]] && ! compgen -G "$dir/bad.json*" > /dev/null || { echo "--out after an error: status $status, $(ls "$dir")"; exit 1; }
+echo "flags, --pretty, --help, --version, --out, empty stdin, errors and the render commands behave"
