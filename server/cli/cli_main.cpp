@@ -23,6 +23,7 @@
 #include "server/json_codec.hpp"
 #include "server/cli/command_help.hpp"
 #include "server/cli/paper_figures.hpp"
+#include "server/cli/progress_line.hpp"
 #include "server/render_requests.hpp"
 #ifdef LIENEWTON_MPI
 #include "server/cli/mpi_farm.hpp"
@@ -32,6 +33,7 @@ namespace {
 
 using namespace lienewton;
 using namespace lienewton::service;
+using lienewton::cli::ProgressLine;
 
 constexpr const char* kUsage =
     "usage: lienewton COMMAND [--FIELD VALUE ...] [--pretty] [< request.json]\n"
@@ -59,6 +61,7 @@ constexpr const char* kUsage =
     "contract (/openapi.json): `lienewton solve --n 8 --h 2 --method newton-group --pretty`; a list as 2,3,4;\n"
     "an object or matrix as JSON; - or _ in the name alike. Stdin is not read when it is a terminal; with\n"
     "nothing on it (a terminal, </dev/null) a command runs its defaults and the flags given.\n"
+    "Long commands show their progress on stderr when it is a terminal (--quiet: not).\n"
     "--pretty indents the JSON result; --out FILE writes the answer to FILE (whole, or not at all) instead of stdout,\n"
     "which never takes a picture when it is a terminal.\n"
     "\n"
@@ -186,6 +189,7 @@ json flag_value(const fields::Field& f, const std::string& text) {
 struct Flags {
   json fields = json::object();
   bool pretty = false;
+  bool quiet = false;              // --quiet: no progress line
   std::optional<std::string> out;  // --out FILE
 };
 
@@ -196,8 +200,8 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
   Flags out;
   const bool render = command == "render";
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--pretty") {
-      out.pretty = true;
+    if (args[i] == "--pretty" || args[i] == "--quiet") {
+      (args[i] == "--pretty" ? out.pretty : out.quiet) = true;
       continue;
     }
     if (args[i] == "--out") {
@@ -210,12 +214,13 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
     std::string name = args[i].substr(2);
     for (char& c : name) c = c == '-' ? '_' : c;
     const fields::Field* f = fields::find(route_of(command, sub), name);
+    if (!f && render && sub == "frames") f = fields::find(fields::integrate, name);  // frames of an integration
     if (!f && render) {
       for (const fields::Field& p : picture_fields())
         if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
     }
     if (!f) {
-      std::vector<std::string> names{"pretty", "out"};
+      std::vector<std::string> names{"pretty", "quiet", "out"};
       for (const fields::Field* field : command_fields(command, sub)) names.push_back(field->name);
       const std::optional<std::string> guess = nearest(name, names);
       std::string dashed = guess.value_or("");
@@ -232,6 +237,9 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
 // The fields `lienewton command [sub]` takes: its route's rows, and a render's picture options.
 std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub) {
   std::vector<const fields::Field*> out = fields::fields_of(route_of(command, sub));
+  if (command == "render" && sub == "frames")  // a solve's fields, then an integration's
+    for (const fields::Field* f : fields::fields_of(fields::integrate))
+      if (!f->takes(fields::solve)) out.push_back(f);
   if (command == "render")
     for (const fields::Field& p : picture_fields())
       if (p.takes(picture_route_of(sub))) out.push_back(&p);
@@ -249,19 +257,29 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   json body = parse_body(part.share_input(std::move(text)));
   if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
+  const bool show = part.prints && !flags.quiet && isatty(STDERR_FILENO);
   json out;
   if (command == "solve") {
     const SolveRequest r = solve_request_from_json(body, limits);
     out = to_json(solve(r), r.solver.include_iterates);
   } else if (command == "sweep") {
-    out = to_json(sweep(sweep_request_from_json(body, limits), {}, {}, part.farm));
+    const SweepRequest r = sweep_request_from_json(body, limits);
+    const SweepRequest full = with_defaults(r);
+    ProgressLine line("sweep", "cells", r.shard ? 0 : full.methods.size() * full.n.size() * full.h.size(), show);
+    out = to_json(sweep(r, [&](const SweepCell&) { return line.step(), true; }, {}, part.farm));
   } else if (command == "basins") {
     const BasinRequest r = basin_request_from_json(body, limits);
-    out = to_json(basins(r, {}, part.farm), r.methods);
+    ProgressLine line("basins", "rows", basin_shard_rows(r.size, r.shard).size(), show);
+    out = to_json(basins(r, [&](const BasinRow&, const std::vector<BasinRoot>&) { return line.step(), true; },
+                         part.farm),
+                  r.methods);
   } else if (command == "integrate") {
-    out = to_json(integrate(integrate_request_from_json(body, limits)));
+    ProgressLine line("integrate", "steps", 0, show);
+    out = to_json(integrate(integrate_request_from_json(body, limits), [&](const StepRecord&) { return line.step(), true; }));
   } else if (command == "work-precision") {
-    out = to_json(work_precision(work_precision_request_from_json(body, limits)));
+    ProgressLine line("work-precision", "series", 0, show);
+    out = to_json(work_precision(work_precision_request_from_json(body, limits),
+                                 [&](const WorkPrecisionSeries&) { return line.step(), true; }));
   } else {
     render::Renderer renderer(1);
     const RenderRequestFn draw = sub == "frames"           ? render_frames

@@ -5,7 +5,8 @@
 # without choices) and `render invariants` draw PNGs, and --format svg gives the SVG copy with its title as text;
 # heavy-top and stiff-body integrate; t_end may exceed the server's cap; nothing on stdin (empty or a terminal) runs
 # the defaults; COMMAND --help lists the fields, --version the version; a misspelt flag gets a suggestion, an error
-# on a terminal is a sentence, a picture is never written to one, --out FILE is the whole answer or nothing.
+# on a terminal is a sentence, a picture is never written to one, --out FILE is the whole answer or nothing; long
+# commands show progress on a terminal.
 set -euo pipefail
 bin=$1
 dir=$(mktemp -d)
@@ -95,4 +96,16 @@ cmp <(timeless "$dir/out.json") <(timeless "$dir/defaults.json") || { echo "solv
 status=0
 "$bin" solve --h abc --out "$dir/bad.json" < /dev/null 2> /dev/null || status=$?
 [[ $status -eq 2 ]] && ! compgen -G "$dir/bad.json*" > /dev/null || { echo "--out after an error: status $status, $(ls "$dir")"; exit 1; }
-echo "flags, --pretty, --help, --version, --out, empty stdin, errors and the render commands behave"
+# render frames takes an integration's fields as flags too.
+"$bin" render frames --problem rigid-body --integrator dirk-cg2 --h 0.25 --t-end 1 --frames 4 --width 96 --height 96 \
+  < /dev/null > "$dir/frames.png"
+png "$dir/frames.png" || { echo "render frames --integrator: not a PNG"; exit 1; }
+"$bin" help render frames | grep -q '^  --integrator NAME$' || { echo "help render frames: no --integrator"; exit 1; }
+# Progress on a terminal's stderr (the first row at once), none with --quiet or off a terminal.
+script -qec "$bin basins --size 16" /dev/null > "$dir/tty-basins.txt"
+grep -q 'lienewton basins: 1 of 16 rows' "$dir/tty-basins.txt" || { echo "basins on a terminal: no progress"; exit 1; }
+script -qec "$bin basins --size 16 --quiet" /dev/null > "$dir/tty-quiet.txt"
+! grep -q 'lienewton basins:' "$dir/tty-quiet.txt" || { echo "basins --quiet: progress shown"; exit 1; }
+"$bin" basins --size 16 < /dev/null 2> "$dir/basins-err.txt" > /dev/null
+[[ ! -s "$dir/basins-err.txt" ]] || { echo "basins off a terminal: $(head -c 200 "$dir/basins-err.txt")"; exit 1; }
+echo "flags, --pretty, --quiet, --help, --version, --out, empty stdin, progress, errors and the render commands behave"
