@@ -282,6 +282,9 @@ HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
   return render(req, request_json(req, list_fields(fields::solve | fields::render_residuals)), service::render_residuals, options_.request_timeout);
 }
 HttpResponse ApiHandlers::livez(const HttpRequest&) { return json_response(R"({"status":"ok"})"); }
+HttpResponse ApiHandlers::version(const HttpRequest&) {
+  return json_response(dump(json{{"version", LIENEWTON_VERSION}, {"build", build_id()}}));
+}
 // Not ready while draining, or while every work slot is taken (a load balancer should send work elsewhere).
 HttpResponse ApiHandlers::readyz(const HttpRequest&) {
   if (draining_.load()) return json_response(R"({"status":"draining"})", 503);

@@ -43,6 +43,7 @@ class ApiHandlers {
   HttpResponse render_invariants(const HttpRequest& req);
   HttpResponse render_residuals(const HttpRequest& req);
   HttpResponse livez(const HttpRequest& req);
+  HttpResponse version(const HttpRequest& req);
   HttpResponse readyz(const HttpRequest& req);
   HttpResponse metrics(const HttpRequest& req);
   HttpResponse openapi(const HttpRequest& req);

@@ -393,9 +393,14 @@ json schemas() {
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
   s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, client_over_capacity, server_busy, invalid_header, too_many_headers, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
-                             {"message", json{{"type", "string"}}}},
+                             {"message", json{{"type", "string"}}},
+                             {"line", json{{"type", "integer"}, {"description", "a program's error (field g): its line, from 1"}}},
+                             {"column", json{{"type", "integer"}, {"description", "a program's error: its column, from 1"}}}},
                             {"code", "field", "message"}, false);
   s["Error"] = object({{"error", ref("ErrorDetail")}}, {"error"}, false);
+  s["Version"] = object({{"version", json{{"type", "string"}, {"description", "the release, as info.version"}}},
+                         {"build", json{{"type", "string"}, {"description", "a hash of this server's binary"}}}},
+                        {"version", "build"}, false);
   return s;
 }
 
@@ -416,6 +421,36 @@ std::string status_text(int status) {
     case 504: return "Deadline passed (--request-timeout; --sweep-timeout for sweeps and heatmaps)";
     default: return "Error";
   }
+}
+
+// A stable name a generated client calls the route by: the path after /api/v1/ in lower camel case
+// ("work-precision" -> workPrecision, "render/frames" -> renderFrames), with "Get" for the GET form of a path that
+// also takes POST; the service's own paths by their name (livez, openapi, dashboard).
+std::string operation_id(const RouteSpec& r) {
+  static const std::string kApi = "/api/v1/";
+  if (r.path == "/") return "dashboard";
+  std::string path = r.path.rfind(kApi, 0) == 0 ? r.path.substr(kApi.size()) : r.path.substr(1);
+  path = path.substr(0, path.find('.'));  // openapi.json -> openapi
+  std::string id;
+  bool upper = false;
+  for (char ch : path) {
+    if (ch == '/' || ch == '-') {
+      upper = true;
+      continue;
+    }
+    id += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(ch))) : ch;
+    upper = false;
+  }
+  const bool has_post = std::any_of(route_table().begin(), route_table().end(),
+                                    [&](const RouteSpec& o) { return o.path == r.path && o.method == "POST"; });
+  return r.method == "GET" && has_post ? id + "Get" : id;
+}
+
+// The group a route is listed under: compute (solves, maps, integration), render (pictures) or service.
+std::string tag_of(const std::string& path) {
+  if (path.rfind("/api/v1/render/", 0) == 0) return "render";
+  if (path.rfind("/api/v1/version", 0) == 0 || path.rfind("/api/v1/", 0) != 0) return "service";
+  return "compute";
 }
 
 // Query parameters of a GET form: one per property of the request schema (see query_params.hpp).
@@ -449,9 +484,7 @@ std::string openapi_document(const ServerOptions& options) {
   const json all = schemas();
   json paths = json::object();
   for (const auto& r : route_table()) {
-    std::string id = r.method == "GET" ? "get" : "post";
-    for (char ch : r.path) id += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-    json op{{"operationId", id}, {"summary", r.summary}};
+    json op{{"operationId", operation_id(r)}, {"summary", r.summary}, {"tags", json::array({tag_of(r.path)})}};
     if (!r.request_schema.empty()) {
       if (r.method == "POST") {
         op["requestBody"] = {{"required", true}, {"content", {{"application/json", {{"schema", ref(r.request_schema)}}}}}};
@@ -486,10 +519,13 @@ std::string openapi_document(const ServerOptions& options) {
     paths[r.path][method] = op;
   }
   json doc{{"openapi", "3.0.3"},
-           {"info", {{"title", "lienewton"}, {"version", "0.1.0"},
+           {"info", {{"title", "lienewton"}, {"version", LIENEWTON_VERSION},
                      {"description", "Newton's method on Lie groups (Owren & Welfert): solves, stability sweeps, "
                                      "implicit integrators, work-precision data and renders. Errors are "
                                      "{\"error\":{\"code\",\"field\",\"message\"}}."}}},
+           {"tags", json::array({json{{"name", "compute"}, {"description", "solves, stability and basin maps, integration, work-precision"}},
+                                 json{{"name", "render"}, {"description", "pictures of the same requests (PNG or SVG)"}},
+                                 json{{"name", "service"}, {"description", "health, metrics, version, this document, the dashboard"}}})},
            {"paths", paths},
            {"components", {{"schemas", all}}},
            {"x-lienewton", openapi_labels(options)}};

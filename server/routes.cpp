@@ -75,6 +75,8 @@ std::vector<RouteSpec> build_table() {
        false, "", {"text/plain"}, "", {}, true},
       {&ApiHandlers::openapi, "GET", "/openapi.json", "This document", BodyKind::none, false, "", {"application/json"}, "",
        {}},
+      {&ApiHandlers::version, "GET", "/api/v1/version", "The release (as this document's info.version) and the build",
+       BodyKind::none, false, "", {"application/json"}, "Version", {}, true},
       {&ApiHandlers::static_file, "GET", "/", "The dashboard (static files from the web root are served below /)",
        BodyKind::none, false, "", {"text/html"}, "", {404}},
   };

@@ -62,6 +62,33 @@ TEST(OpenApi, DocumentMatchesTheRegisteredRoutes) {
   }
 }
 
+// A generated client calls routes by stable names under three tags, and the version the document states is the one
+// the server answers on /api/v1/version.
+TEST(OpenApi, OperationsHaveStableNamesTagsAndTheVersion) {
+  testing::TestServer s;
+  auto c = s.client();
+  const json doc = json::parse(c.Get("/openapi.json")->body);
+  std::set<std::string> ids, tags;
+  for (const auto& [path, ops] : doc["paths"].items())
+    for (const auto& [method, op] : ops.items()) {
+      EXPECT_TRUE(ids.insert(op["operationId"].get<std::string>()).second) << op["operationId"];
+      ASSERT_EQ(op["tags"].size(), 1u) << method << " " << path;
+      tags.insert(op["tags"][0].get<std::string>());
+    }
+  for (const char* id : {"solve", "solveEvents", "sweep", "basins", "integrate", "workPrecision", "renderFrames",
+                         "renderFramesGet", "livez", "openapi", "version", "dashboard"})
+    EXPECT_TRUE(ids.count(id)) << id;
+  EXPECT_EQ(tags, (std::set<std::string>{"compute", "render", "service"}));
+  const auto version = c.Get("/api/v1/version");
+  ASSERT_TRUE(version);
+  ASSERT_EQ(version->status, 200);
+  const json v = json::parse(version->body);
+  EXPECT_EQ(v["version"], doc["info"]["version"]);
+  EXPECT_EQ(v["version"], LIENEWTON_VERSION);
+  EXPECT_FALSE(v["build"].get<std::string>().empty());
+  EXPECT_TRUE(doc["components"]["schemas"]["ErrorDetail"]["properties"].contains("line"));
+}
+
 // A client plans with the running server's caps (its flags), not the defaults: the basin size they allow for
 // k methods, floor(sqrt(max_values / (basin_pixel_values k))), is accepted and one more is refused.
 TEST(OpenApi, PublishesTheRunningServersLimits) {
