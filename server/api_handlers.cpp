@@ -310,6 +310,14 @@ HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
 HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds) {
+  // Asked for Server-Sent Events alone, a POST route has nothing it may send: it answers JSON or NDJSON.
+  const std::string& accept = req.header("Accept");
+  if (!sse && accept.find("text/event-stream") != std::string::npos &&
+      accept.find("application/json") == std::string::npos && accept.find("application/x-ndjson") == std::string::npos &&
+      accept.find("*/*") == std::string::npos)
+    throw ApiError(406, "not_acceptable", "",
+                   "this route answers application/json, or streams application/x-ndjson; Server-Sent Events are "
+                   "GET /api/v1/solve/events");
   const json body = request_json(req);  // parsing only: no compiling, no evaluating before the gate
   auto slot = acquire_slot(req);
   const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;

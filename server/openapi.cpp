@@ -391,7 +391,7 @@ json schemas() {
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_invariants))}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
-  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, over_capacity, client_over_capacity, server_busy, invalid_header, too_many_headers, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
+  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, not_acceptable, over_capacity, client_over_capacity, server_busy, invalid_header, too_many_headers, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
                              {"message", json{{"type", "string"}}},
                              {"line", json{{"type", "integer"}, {"description", "a program's error (field g): its line, from 1"}}},
@@ -413,6 +413,7 @@ std::string status_text(int status) {
     case 411: return "Content-Length required (no Transfer-Encoding)";
     case 413: return "Body larger than --max-body, or output_too_large (--max-output-values, --max-image-pixels)";
     case 415: return "Body is not JSON, or is compressed";
+    case 406: return "Accept names only text/event-stream, which a POST route does not send (JSON or NDJSON)";
     case 416: return "More than one byte range";
     case 422: return "Valid JSON, impossible request";
     case 429: return "This client address already runs its share of long requests (half of --max-streams)";

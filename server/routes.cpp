@@ -5,7 +5,7 @@
 namespace lienewton::service {
 namespace {
 
-const std::vector<int> kJsonPostErrors{400, 403, 411, 413, 415, 422, 429, 431, 503, 504};
+const std::vector<int> kJsonPostErrors{400, 403, 406, 411, 413, 415, 422, 429, 431, 503, 504};
 const std::vector<int> kGetWorkErrors{400, 403, 413, 422, 429, 431, 503, 504};
 
 std::vector<RouteSpec> build_table() {

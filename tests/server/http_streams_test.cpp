@@ -89,6 +89,20 @@ TEST(HttpStreams, ServerSentEvents) {
   EXPECT_EQ(result["status"], "converged");
 }
 
+// A POST route asked for Server-Sent Events alone says so (406) instead of answering JSON the client did not ask for.
+TEST(HttpStreams, PostRoutesRefuseEventStreamsAlone) {
+  TestServer s;
+  auto c = s.client();
+  auto r = c.Post("/api/v1/sweep", {{"Accept", "text/event-stream"}}, R"({"n":[3],"h":[0.5]})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 406) << r->body;
+  EXPECT_EQ(json::parse(r->body)["error"]["code"], "not_acceptable");
+  auto both = c.Post("/api/v1/sweep", {{"Accept", "text/event-stream, application/json"}}, R"({"n":[3],"h":[0.5]})",
+                     "application/json");
+  ASSERT_TRUE(both);
+  EXPECT_EQ(both->status, 200) << both->body;
+}
+
 TEST(HttpStreams, SweepIntegrateAndWorkPrecisionStream) {
   TestServer s;
   auto c = s.client();
