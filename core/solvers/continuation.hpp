@@ -242,10 +242,13 @@ class BranchPath {
     for (Eigen::Index i = 0; i < mu.size(); ++i)
       if (h_ * std::abs(mu[i]) >= 1.0 && mu[i].real() > 0.0) return std::nullopt;
     const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(q_, q_) - h_ * j;
-    const Vector v(a.partialPivLu().solve(Eigen::VectorXd(h_ * eq_.field()->g(eq_.z()))));
+    const Eigen::VectorXd hg = h_ * Eigen::VectorXd(eq_.field()->g(eq_.z()));
+    const Eigen::VectorXd x = Eigen::PartialPivLU<Eigen::MatrixXd>(a).solve(hg);
     ++extra_iterations_;
-    if (!v.allFinite()) return std::nullopt;
-    return at_h(Point{v, h_}, v.norm(), PathStep{}, false);
+    if (!x.allFinite()) return std::nullopt;
+    Point pred{zero_vector(group_), h_};
+    pred.v = x;
+    return at_h(pred, x.norm(), PathStep{}, false);
   }
 
   Tangent tangent_at_start() const {
