@@ -17,7 +17,10 @@ const cspViolations = [];
 
 before(async () => {
   const { chromium } = await loadPlaywright();
-  server = await startServer(binary, webRoot);
+  // The tests drive one page through every panel, whose long requests overlap when the machine is busy: room for
+  // eight at once from this one address, so that a slow run is not refused 429 (the per-address limit has tests of
+  // its own in tests/server).
+  server = await startServer(binary, webRoot, { flags: ['--max-streams', '16'] });
   base = server.base;
   browser = await launchChromium(chromium);
   page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
