@@ -19,7 +19,7 @@ RUN cmake -S . -B /build -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_NATIVE=OFF -DLIE
 FROM debian:bookworm-slim AS runtime
 # Packages of the NEEDED libraries of lienewton and lienewton-server beyond the base image (libc6,
 # libstdc++6, libgcc-s1); apt brings their own dependencies (LLVM for llvmpipe, OpenSSL, zlib, brotli).
-ARG RUNTIME_LIBS="libcpp-httplib0.11 libosmesa6 libpng16-16 libstb0"
+ARG RUNTIME_LIBS="libcpp-httplib0.11 libosmesa6 libpng16-16 libstb0 libwebp7 libwebpmux3"
 # Not visible to ldd: the TrueType font the heatmap labels are drawn with.
 ARG RUNTIME_DATA="fonts-dejavu-core"
 # The supported deployment in one image: nginx in front of the server, tini as PID 1 (reaps, forwards signals).

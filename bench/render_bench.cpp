@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/integrate.hpp"
+#include "render/motion_of_problem.hpp"
 #include "render/renderer.hpp"
 
 namespace {
@@ -68,6 +70,48 @@ void BM_FramesPng512(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_FramesPng512)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The heavy-top benchmark's motion over t = 0 ... 2, 1601 states (the path's samples), 201 of them shown.
+struct HeavyTopMotion {
+  render::Motion motion;
+  std::vector<std::size_t> shown;
+};
+const HeavyTopMotion& heavy_top_motion() {
+  static const HeavyTopMotion m = [] {
+    lienewton::IntegrateRequest r;
+    r.problem.kind = lienewton::ProblemKind::heavy_top;
+    r.problem.group = "SOxR";
+    r.integrator = lienewton::Integrator::rkmk_gauss2;
+    r.t_end = 2;
+    r.frames = 1000;
+    r.reference = false;
+    const lienewton::IntegrateResult result = lienewton::integrate(r);
+    HeavyTopMotion out{render::motion_of(r.problem, result.frames, result.frame_times), {}};
+    for (std::size_t i = 0; i <= 200; ++i) out.shown.push_back(i * (result.frames.size() - 1) / 200);
+    return out;
+  }();
+  return m;
+}
+
+// One frame of the motion (the last state: the whole path drawn), drawn and encoded as the PNG still.
+void BM_MotionFramePng512(benchmark::State& state) {
+  const HeavyTopMotion& m = heavy_top_motion();
+  const render::FramesOptions options{512, 512, 35, 20};
+  const std::size_t last = m.motion.times.size() - 1;
+  if (!is_png(renderer().motion_png(m.motion, last, options))) state.SkipWithError("motion_png returned no PNG");
+  for (auto _ : state) benchmark::DoNotOptimize(renderer().motion_png(m.motion, last, options));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_MotionFramePng512)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The animation of 201 frames at 512x512 as one animated WebP.
+void BM_MotionAnimation201Webp512(benchmark::State& state) {
+  const HeavyTopMotion& m = heavy_top_motion();
+  const render::FramesOptions options{512, 512, 35, 20};
+  for (auto _ : state) benchmark::DoNotOptimize(renderer().motion_webp(m.motion, m.shown, options, {}, 50));
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(m.shown.size()));
+}
+BENCHMARK(BM_MotionAnimation201Webp512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
 void BM_HeatmapPng512(benchmark::State& state) {
   const SweepResult sweep = default_grid();

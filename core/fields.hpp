@@ -108,6 +108,7 @@ enum Route : unsigned {
   render_work_precision = 1u << 8,
   render_residuals = 1u << 9,
   render_invariants = 1u << 10,
+  render_motion = 1u << 11,
 };
 using Routes = unsigned;
 inline constexpr Routes kSolveLike = solve | basins | integrate | work_precision;  // one equation of size n

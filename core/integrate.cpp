@@ -62,7 +62,8 @@ void validate(const IntegrateRequest& req) {
   validate(req.solver);
   check_globalization(req.solver.method, req.solver);
   check_stage_options(req);
-  if (req.frames < 0 || req.frames > 1000) validation::invalid("frames", "frames must be an integer in [0, 1000]");
+  if (req.frames < 0 || req.frames > IntegrateRequest::kMaxFrames)
+    validation::invalid("frames", "frames must be an integer in [0, " + std::to_string(IntegrateRequest::kMaxFrames) + "]");
   // An implicit RKMK method's Newton factors its s q x s q stage system densely: as large as the dense Newton
   // step of a single equation goes (beyond it the time and memory grow as (s q)^3 and (s q)^2). A family that
   // bounds its index itself (a system of bodies) keeps the stage system sparse.

@@ -26,7 +26,8 @@ struct IntegrateRequest {
   // stage's branch of roots at h = 0; none at Z_i, as the paper starts at y_0 = z. Either way the stage's root must
   // be the one continued from Z_i (core/integrators/stepper.hpp).
   Predictor predictor = Predictor::lie_euler;
-  int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none)
+  int frames = 0;                     // number of evenly spaced states y(t_k) to return (0: none), at most kMaxFrames
+  static constexpr int kMaxFrames = 1000;
   bool reference = true;              // compute the reference solution and the global error
   // Adaptive steps (step doubling, docs/integrators.md): with rtol or atol (the other then takes the same value)
   // the integrator chooses its step sizes, h is the first step tried, and at most max_steps steps (accepted and

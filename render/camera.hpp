@@ -21,6 +21,10 @@ class Camera {
   double depth(const Eigen::Vector3d& world) const;   // larger is nearer the viewer
   double pixels_per_unit() const { return scale_; }
   Point center() const { return {static_cast<float>(cx_), static_cast<float>(cy_)}; }
+  // The view's directions in the world: a solid's shading and its hidden faces need them.
+  const Eigen::Vector3d& toward_viewer() const { return toward_viewer_; }
+  const Eigen::Vector3d& up() const { return up_; }
+  const Eigen::Vector3d& right() const { return right_; }
 
  private:
   Eigen::Vector3d right_, up_, toward_viewer_;

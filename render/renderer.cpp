@@ -13,6 +13,7 @@
 #include "render/gl_context.hpp"
 #include "render/heatmap_scene.hpp"
 #include "render/painter.hpp"
+#include "render/webp_animation.hpp"
 #include "render/png.hpp"
 #include "render/svg.hpp"
 
@@ -128,23 +129,53 @@ std::vector<unsigned char> Renderer::frames_png(const std::vector<std::vector<Bo
                    [&](Canvas& canvas, const Camera& camera) { draw_bodies(canvas, camera, states, start); });
 }
 
-std::vector<unsigned char> Renderer::orbit_png(const FramesOptions& options, const Caption& caption,
-                                               ImageFormat format,
-                                               const std::function<void(Canvas&, const Camera&)>& draw) {
+Canvas Renderer::orbit_canvas(const FramesOptions& options, const Caption& caption,
+                              const std::function<void(Canvas&, const Camera&)>& draw) {
   validate_size("width", options.width, false);
   validate_size("height", options.height, false);
   if (!std::isfinite(options.azimuth_deg)) throw std::invalid_argument("azimuth_deg must be finite");
   if (!std::isfinite(options.elevation_deg)) throw std::invalid_argument("elevation_deg must be finite");
-  // The scene is built before a worker is borrowed and encoded after it is returned: only drawing holds one.
   // The caption takes a band of the given height; the sphere keeps at least the smallest picture's room.
   const Caption shown = caption_height(caption, options.width) <= options.height - kMinImageSize ? caption : Caption{};
   Canvas canvas(options.width, options.height, kWhite);
   draw_caption(canvas, shown);
   draw(canvas, Camera(options.azimuth_deg, options.elevation_deg, options.width,
                       static_cast<int>(canvas.scene_height())));
+  return canvas;
+}
+
+std::vector<unsigned char> Renderer::orbit_png(const FramesOptions& options, const Caption& caption,
+                                               ImageFormat format,
+                                               const std::function<void(Canvas&, const Camera&)>& draw) {
+  // The scene is built before a worker is borrowed and encoded after it is returned: only drawing holds one.
+  const Canvas canvas = orbit_canvas(options, caption, draw);
   if (format == ImageFormat::svg) return bytes_of(to_svg(canvas));
   const std::vector<std::uint8_t> rgb = pool_->paint(canvas);
   return encode_png(rgb, options.width, options.height, RowOrder::bottom_up);
+}
+
+std::vector<unsigned char> Renderer::motion_png(const Motion& motion, std::size_t at, const FramesOptions& options,
+                                                const Caption& caption, ImageFormat format) {
+  check_motion(motion);
+  return orbit_png(options, caption, format,
+                   [&](Canvas& canvas, const Camera& camera) { draw_motion(canvas, camera, motion, at); });
+}
+
+std::vector<unsigned char> Renderer::motion_webp(const Motion& motion, const std::vector<std::size_t>& shown,
+                                                 const FramesOptions& options, const Caption& caption, int frame_ms,
+                                                 const std::function<bool(std::size_t)>& keep_going) {
+  if (frame_ms < 1 || frame_ms > 10000) throw std::invalid_argument("frame_ms must be in [1, 10000]");
+  check_motion(motion);
+  for (std::size_t at : shown)
+    if (at >= motion.times.size()) throw std::invalid_argument("no such state");
+  WebpAnimation animation(options.width, options.height);
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    if (keep_going && !keep_going(i)) return {};
+    const Canvas canvas = orbit_canvas(
+        options, caption, [&](Canvas& c, const Camera& camera) { draw_motion(c, camera, motion, shown[i]); });
+    animation.add(pool_->paint(canvas), RowOrder::bottom_up, static_cast<int>(i) * frame_ms);
+  }
+  return animation.finish(static_cast<int>(shown.size()) * frame_ms);
 }
 
 std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,

@@ -13,6 +13,7 @@
 #include "render/canvas.hpp"
 #include "render/caption.hpp"
 #include "render/figure.hpp"
+#include "render/motion_scene.hpp"
 #include "render/options.hpp"
 #include "render/render_unavailable.hpp"
 
@@ -39,6 +40,15 @@ class Renderer {
   std::vector<unsigned char> frames_png(const std::vector<std::vector<BodyFrame>>& states,
                                         const std::vector<BodyFrame>& start, const FramesOptions& options,
                                         const Caption& caption = {}, ImageFormat format = ImageFormat::png);
+  // A motion (motion_scene.hpp) at state `at`, as PNG or SVG.
+  std::vector<unsigned char> motion_png(const Motion& motion, std::size_t at, const FramesOptions& options,
+                                        const Caption& caption = {}, ImageFormat format = ImageFormat::png);
+  // The motion at the states `shown` in turn (each below times.size()), each shown frame_ms, as an animated WebP
+  // (webp_animation.hpp). Drawing stops, returning nothing, when keep_going(index into shown) says false. Throws
+  // std::invalid_argument for frame_ms outside [1, 10000] or a state out of range.
+  std::vector<unsigned char> motion_webp(const Motion& motion, const std::vector<std::size_t>& shown,
+                                         const FramesOptions& options, const Caption& caption, int frame_ms,
+                                         const std::function<bool(std::size_t)>& keep_going = {});
   // caption: a band above the picture (caption.hpp); a given height includes it.
   std::vector<unsigned char> heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,
                                          const Caption& caption = {}, ImageFormat format = ImageFormat::png);
@@ -52,6 +62,9 @@ class Renderer {
   // A scene under the orbit camera (the frames' pictures): options checked, caption band, drawn, encoded.
   std::vector<unsigned char> orbit_png(const FramesOptions& options, const Caption& caption, ImageFormat format,
                                        const std::function<void(Canvas&, const Camera&)>& draw);
+  // The same scene as a canvas (options checked, caption band drawn).
+  Canvas orbit_canvas(const FramesOptions& options, const Caption& caption,
+                      const std::function<void(Canvas&, const Camera&)>& draw);
   class Pool;
   std::unique_ptr<Pool> pool_;
 };

@@ -278,6 +278,10 @@ HttpResponse ApiHandlers::render_work_precision(const HttpRequest& req) {
 HttpResponse ApiHandlers::render_invariants(const HttpRequest& req) {
   return render(req, request_json(req, list_fields(fields::integrate | fields::render_invariants)), service::render_invariants, options_.request_timeout);
 }
+// Motion's GET form: an integration's fields beside a solve's, as on frames.
+HttpResponse ApiHandlers::render_motion(const HttpRequest& req) {
+  return render(req, request_json(req, list_fields(fields::integrate | fields::render_motion)), service::render_motion, options_.request_timeout);
+}
 HttpResponse ApiHandlers::render_residuals(const HttpRequest& req) {
   return render(req, request_json(req, list_fields(fields::solve | fields::render_residuals)), service::render_residuals, options_.request_timeout);
 }
@@ -382,6 +386,16 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
   return res;
 }
 
+namespace {
+// The picture's media type, read from its first bytes: each route's format field has been checked by its drawing.
+const char* image_type(const std::vector<unsigned char>& picture) {
+  const std::string_view head(reinterpret_cast<const char*>(picture.data()), std::min<std::size_t>(picture.size(), 12));
+  if (head.size() == 12 && head.substr(0, 4) == "RIFF" && head.substr(8, 4) == "WEBP") return "image/webp";
+  if (head.substr(0, 4) == "\x89PNG") return "image/png";
+  return "image/svg+xml";
+}
+}  // namespace
+
 HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, RenderRequestFn draw,
                                  double budget_seconds) {
   check_image_pixels(body, options_.output);
@@ -415,8 +429,7 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   HttpResponse res;
   res.set_header("Cache-Control", cacheable ? kRenderCacheControl : "no-store");
   if (cacheable) res.set_header("ETag", etag);
-  // The format was checked by the drawing: svg or the default png.
-  res.content_type = body.is_object() && body.value("format", "") == "svg" ? "image/svg+xml" : "image/png";
+  res.content_type = image_type(picture);
   res.body.assign(picture.begin(), picture.end());
   return res;
 }

@@ -41,6 +41,7 @@ class ApiHandlers {
   HttpResponse render_basins(const HttpRequest& req);
   HttpResponse render_work_precision(const HttpRequest& req);
   HttpResponse render_invariants(const HttpRequest& req);
+  HttpResponse render_motion(const HttpRequest& req);
   HttpResponse render_residuals(const HttpRequest& req);
   HttpResponse livez(const HttpRequest& req);
   HttpResponse version(const HttpRequest& req);

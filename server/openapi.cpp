@@ -363,6 +363,14 @@ json schemas() {
                       "defaults to 16), plus the picture options below. Other N: 422."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_frames))}};
+  s["RenderMotionRequest"] = json{
+      {"description", "The requests of RenderFramesRequest (a SolveRequest, or an IntegrateRequest whose frames default "
+                      "to " + std::to_string(kMotionFrames) + "), drawn as a scene of bodies: the heavy top as a disc on a rod "
+                      "from its pivot with its symmetry axis' tip traced, the free rigid body's momentum on its sphere with "
+                      "the energy levels, the stiff body's inertia ellipsoid, the chain's links; any other group's bodies "
+                      "as ellipsoids. Plus the picture options below."},
+      {"type", "object"},
+      {"properties", properties(picture_rows(fields::render_motion))}};
   s["RenderHeatmapRequest"] = json{
       {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
       {"type", "object"},
@@ -466,7 +474,7 @@ json query_parameters(const json& all_schemas, const std::string& schema) {
     }
   };
   add(all_schemas[schema]);
-  if (schema == "RenderFramesRequest") add(all_schemas["SolveRequest"]);
+  if (schema == "RenderFramesRequest" || schema == "RenderMotionRequest") add(all_schemas["SolveRequest"]);
   if (schema == "RenderHeatmapRequest") add(all_schemas["SweepRequest"]);
   if (schema == "RenderBasinsRequest") add(all_schemas["BasinRequest"]);
   if (schema == "RenderWorkPrecisionRequest") add(all_schemas["WorkPrecisionRequest"]);
@@ -498,7 +506,7 @@ std::string openapi_document(const ServerOptions& options) {
       json media = json::object();
       if (type == "application/json" && !r.result_schema.empty()) media["schema"] = ref(r.result_schema);
       else if (type == "application/x-ndjson" || type == "text/event-stream") media["schema"] = ref("SolveStreamRecord");
-      else if (type == "image/png") media["schema"] = {{"type", "string"}, {"format", "binary"}};
+      else if (type == "image/png" || type == "image/webp") media["schema"] = {{"type", "string"}, {"format", "binary"}};
       else media["schema"] = {{"type", "string"}};
       content[type] = media;
     }

@@ -14,6 +14,7 @@
 #include "core/work_precision.hpp"
 #include "render/invariants_scene.hpp"
 #include "render/log_axis.hpp"
+#include "render/motion_of_problem.hpp"
 #include "render/residuals_scene.hpp"
 #include "render/work_precision_scene.hpp"
 #include "render/renderer.hpp"
@@ -217,12 +218,32 @@ std::vector<unsigned char> draw_figure(render::Renderer& renderer, render::Image
 
 }  // namespace
 
+const std::vector<RenderRoute>& render_routes() {
+  static const std::vector<RenderRoute> routes{
+      {"frames", fields::solve, fields::render_frames, render_frames, true},
+      {"motion", fields::solve, fields::render_motion, render_motion, true},
+      {"heatmap", fields::sweep, fields::render_heatmap, render_heatmap},
+      {"basins", fields::basins, fields::render_basins, render_basins},
+      {"work-precision", fields::work_precision, fields::render_work_precision, render_work_precision},
+      {"residuals", fields::solve, fields::render_residuals, render_residuals},
+      {"invariants", fields::integrate, fields::render_invariants, render_invariants}};
+  return routes;
+}
+
+const RenderRoute* find_render_route(std::string_view name) {
+  for (const RenderRoute& r : render_routes())
+    if (name == r.name) return &r;
+  return nullptr;
+}
+
 const std::vector<fields::Field>& picture_fields() {
   using fields::Field;
   using fields::Type;
   static const std::vector<Field> rows = [] {
     constexpr fields::Routes all = fields::render_frames | fields::render_heatmap | fields::render_basins |
-                                   fields::render_work_precision | fields::render_residuals | fields::render_invariants;
+                                   fields::render_work_precision | fields::render_residuals | fields::render_invariants |
+                                   fields::render_motion;
+    constexpr fields::Routes scenes = fields::render_frames | fields::render_motion;
     const Field size{.name = "width", .type = Type::integer, .routes = all,
                      .description = "image width in pixels (heatmap and basins: 0 or absent, automatic)",
                      .minimum = static_cast<double>(render::kMinImageSize),
@@ -230,7 +251,7 @@ const std::vector<fields::Field>& picture_fields() {
     Field height = size;
     height.name = "height";
     height.description = "image height in pixels (heatmap and basins: 0 or absent, automatic)";
-    const Field azimuth{.name = "azimuth_deg", .type = Type::number, .routes = fields::render_frames,
+    const Field azimuth{.name = "azimuth_deg", .type = Type::number, .routes = scenes,
                         .description = "camera azimuth", .minimum = -360.0, .maximum = 360.0};
     Field elevation = azimuth;
     elevation.name = "elevation_deg";
@@ -250,20 +271,28 @@ const std::vector<fields::Field>& picture_fields() {
     const Field methods = list_of("method", "methods", "method names");
     const Field differentials = list_of("differential", "differentials", "differential names");
     return std::vector<Field>{
-        Field{.name = "kind", .type = Type::string, .routes = fields::render_frames,
+        Field{.name = "kind", .type = Type::string, .routes = scenes,
               .description = "what is drawn: a solve's iterates or an integration's states (default: integrate when "
                              "any of integrator, t_end, frames is given)",
               .values = {"solve", "integrate"}},
         size, height,
-        Field{.name = "format", .type = Type::string, .routes = all,
+        Field{.name = "format", .type = Type::string, .routes = all & ~fields::render_motion,
               .description = "png (the default), or svg: the same picture with its text and lines as vectors (a "
                              "basin map's panels as embedded PNG); the answer's type is image/svg+xml",
               .values = {"png", "svg"}},
         azimuth, elevation,
-        Field{.name = "upto", .type = Type::integer, .routes = fields::render_frames,
-              .description = "draw frames 0..upto only, upto bold (a slider over iterates or time steps); 422 if "
-                             "there are not that many",
+        Field{.name = "format", .type = Type::string, .routes = fields::render_motion,
+              .description = "webp (the default): an animation of every state, frame_ms each, looping "
+                             "(image/webp); png or svg: the scene at state upto (default the last)",
+              .values = {"webp", "png", "svg"}},
+        Field{.name = "upto", .type = Type::integer, .routes = scenes,
+              .description = "frames: draw frames 0..upto only, upto bold (a slider over iterates or time steps); "
+                             "motion: the state a png or svg shows; 422 if there are not that many",
               .minimum = 0.0},
+        Field{.name = "frame_ms", .type = Type::integer, .routes = fields::render_motion,
+              .description = "how long an animation shows each state, in milliseconds (default " +
+                             std::to_string(kMotionFrameMs) + ")",
+              .minimum = 1.0, .maximum = 10000.0},
         Field{.name = "sweep", .type = Type::object, .routes = fields::render_heatmap,
               .description = "a finished sweep to draw instead of running the sweep request; with the request's "
                              "fields beside it, the title names them (each cell must lie in that request's grid)",
@@ -275,38 +304,33 @@ const std::vector<fields::Field>& picture_fields() {
   return rows;
 }
 
-std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
-                                         const RenderHooks& hooks) {
-  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
-  render::FramesOptions options;
-  options.width = take_int(request, "width", options.width, false);
-  options.height = take_int(request, "height", options.height, false);
-  options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
-  options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
-  const render::ImageFormat format = take_format(request);
-  // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
-  const int upto = take_int(request, "upto", -1, false);
+namespace {
+
+// What a frames or motion picture shows: the states of a solve's iterates or of an integration, with their
+// times (a solve's: the iteration n), the start, the problem and the caption.
+struct Shown {
+  ProblemSpec problem;
+  std::vector<Eigen::MatrixXd> states;
+  std::vector<double> times;
+  Eigen::MatrixXd start;
   render::Caption caption;
-  // One body is its rotation in the unit sphere; several are their axes at their positions.
-  const auto draw = [&](std::vector<std::vector<BodyFrame>>& frames, const std::vector<BodyFrame>& start) {
-    if (upto >= static_cast<int>(frames.size())) {
-      throw ApiError(422, "unprocessable", "upto", "upto must be below the number of frames (" +
-                                                       std::to_string(frames.size()) + ")");
-    }
-    if (upto >= 0) frames.resize(static_cast<std::size_t>(upto) + 1);
-    if (start.size() > 1) return renderer.frames_png(frames, start, options, caption, format);
-    std::vector<Eigen::Matrix3d> rotations;
-    for (const auto& state : frames) rotations.push_back(state.front().rotation);
-    return renderer.frames_png(rotations, start.front().rotation, options, caption, format);
-  };
-  // An integrate request is told apart by kind, or by a field only integrate requests have.
+  bool iterates = false;
+};
+
+// What the picture draws: a solve or an integration, told apart by kind or by a field only integrate requests have.
+bool takes_integration(json& request) {
   std::string kind = take_string(request, "kind");
   if (kind.empty()) {
     kind = request.contains("integrator") || request.contains("t_end") || request.contains("frames") ? "integrate" : "solve";
   }
-  std::vector<std::vector<BodyFrame>> frames;
-  std::vector<BodyFrame> start;
-  if (kind == "solve") {
+  if (kind != "solve" && kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
+  return kind == "integrate";
+}
+
+// Runs the request the picture draws (an integration with `default_frames` states when frames is absent).
+Shown run_shown(json& request, bool integration, const Limits& limits, const RenderHooks& hooks, int default_frames) {
+  Shown shown;
+  if (!integration) {
     SolveRequest r = solve_request_from_json(request, limits);
     check_bodies(r.problem);
     r.solver.include_iterates = true;
@@ -315,19 +339,18 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
     SolveResult result = solve_validated(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
-    std::vector<Eigen::MatrixXd> states;
     for (const auto& t : result.trace)
-      if (t.y.size() > 0) states.push_back(t.y);
-    if (states.empty()) states.push_back(result.y);
-    frames = bodies(r.problem, states);
-    start = r.problem.z ? bodies(r.problem, {*r.problem.z}).front() : frames.front();
-    caption = {"Iterates y\u2080, y\u2081, \u2026 of " + std::string(words(r.solver.method).label),
-               field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
-                   " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
-    return draw(frames, start);
+      if (t.y.size() > 0) shown.states.push_back(t.y), shown.times.push_back(t.iteration);
+    if (shown.states.empty()) shown.states.push_back(result.y), shown.times.push_back(0);
+    shown.start = r.problem.z ? *r.problem.z : shown.states.front();
+    shown.caption = {"Iterates y\u2080, y\u2081, \u2026 of " + std::string(words(r.solver.method).label),
+                     field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(r.h) +
+                         " \u00b7 " + solver_facts(r.solver, r.solver.method != Method::fixed_point)};
+    shown.problem = std::move(r.problem);
+    shown.iterates = true;
+    return shown;
   }
-  if (kind != "integrate") throw FieldError("invalid_field", "kind", "kind must be solve or integrate");
-  if (!request.contains("frames")) request["frames"] = 16;
+  if (!request.contains("frames")) request["frames"] = default_frames;
   IntegrateRequest r = integrate_request_from_json(request, limits);
   check_bodies(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
@@ -338,15 +361,95 @@ std::vector<unsigned char> render_frames(json request, const Limits& limits, ren
   IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
-  frames = bodies(r.problem, result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames);
-  start = frames.front();
+  shown.states = result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames;
+  shown.times = result.frames.empty() ? std::vector<double>{r.t_end} : result.frame_times;
+  shown.start = shown.states.front();
   const bool solves = solves_stages(r.integrator);  // rkmk4 is explicit: no method, differential or tol
-  caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) +
-                 (solves ? ", " + std::string(words(r.solver.method).label) : std::string()),
-             field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(*r.h) +
-                 ", t_end = " + number_text(r.t_end) +
-                 (solves ? " \u00b7 " + solver_facts(r.solver, uses_differential(r.solver.method)) : std::string())};
-  return draw(frames, start);
+  shown.caption = {"Trajectory y(t): " + std::string(words(r.integrator).label) +
+                       (solves ? ", " + std::string(words(r.solver.method).label) : std::string()),
+                   field_name(r.problem) + " on " + group_name(r.problem) + ", h = " + render::power_of_two_label(*r.h) +
+                       ", t_end = " + number_text(r.t_end) +
+                       (solves ? " \u00b7 " + solver_facts(r.solver, uses_differential(r.solver.method)) : std::string())};
+  shown.problem = std::move(r.problem);
+  return shown;
+}
+
+render::FramesOptions take_view(json& request) {
+  render::FramesOptions options;
+  options.width = take_int(request, "width", options.width, false);
+  options.height = take_int(request, "height", options.height, false);
+  options.azimuth_deg = take_angle(request, "azimuth_deg", options.azimuth_deg);
+  options.elevation_deg = take_angle(request, "elevation_deg", options.elevation_deg);
+  return options;
+}
+
+// upto: a slider's position, below the number of states (-1: absent).
+void check_upto(int upto, std::size_t states) {
+  if (upto >= static_cast<int>(states)) {
+    throw ApiError(422, "unprocessable", "upto",
+                   "upto must be below the number of frames (" + std::to_string(states) + ")");
+  }
+}
+
+}  // namespace
+
+std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const render::FramesOptions options = take_view(request);
+  const render::ImageFormat format = take_format(request);
+  // A slider's position: only frames 0..upto are drawn, upto bold (absent: all).
+  const int upto = take_int(request, "upto", -1, false);
+  const bool integration = takes_integration(request);
+  Shown shown = run_shown(request, integration, limits, hooks, 16);
+  check_upto(upto, shown.states.size());
+  if (upto >= 0) shown.states.resize(static_cast<std::size_t>(upto) + 1);
+  std::vector<std::vector<BodyFrame>> frames = bodies(shown.problem, shown.states);
+  const std::vector<BodyFrame> start = bodies(shown.problem, {shown.start}).front();
+  // One body is its rotation in the unit sphere; several are their axes at their positions.
+  if (start.size() > 1) return renderer.frames_png(frames, start, options, shown.caption, format);
+  std::vector<Eigen::Matrix3d> rotations;
+  for (const auto& state : frames) rotations.push_back(state.front().rotation);
+  return renderer.frames_png(rotations, start.front().rotation, options, shown.caption, format);
+}
+
+std::vector<unsigned char> render_motion(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks) {
+  if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
+  const render::FramesOptions options = take_view(request);
+  const std::string format = take_string(request, "format");
+  if (!format.empty() && format != "webp" && format != "png" && format != "svg")
+    throw FieldError("invalid_field", "format", "format must be webp, png or svg");
+  const int upto = take_int(request, "upto", -1, false);
+  const int frame_ms = take_int(request, "frame_ms", kMotionFrameMs, false);
+  // The path is drawn through kPathSamples times as many states as the animation shows (as many as the frames
+  // limit allows): a fast spin's loops stay round between two frames.
+  constexpr int kPathSamples = 8;
+  const bool integration = takes_integration(request);
+  int frames = kMotionFrames;
+  if (integration && request.contains("frames")) {
+    (void)integrate_request_from_json(request, limits);  // frames' own checks, named, before the change below
+    frames = request["frames"].get<int>();
+  }
+  if (integration) request["frames"] = std::max(frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, kPathSamples * frames}));
+  const Shown shown = run_shown(request, integration, limits, hooks, kMotionFrames);
+  // The states shown: every state of a solve; an integration's `frames` + 1 evenly spaced, first and last included.
+  std::vector<std::size_t> states;
+  const std::size_t dense = shown.states.size();
+  const std::size_t count = integration ? std::min<std::size_t>(dense, static_cast<std::size_t>(frames) + 1) : dense;
+  for (std::size_t i = 0; i < count; ++i) states.push_back(count == 1 ? dense - 1 : i * (dense - 1) / (count - 1));
+  check_upto(upto, states.size());
+  render::Motion motion = render::motion_of(shown.problem, shown.states, shown.times);
+  if (shown.iterates) motion.time_name = "n";
+  if (format.empty() || format == "webp") {
+    std::vector<unsigned char> out = renderer.motion_webp(motion, states, options, shown.caption, frame_ms,
+                                                          [&](std::size_t i) { return keep_going(hooks, static_cast<int>(i)); });
+    if (out.empty()) throw RenderCancelled{};
+    return out;
+  }
+  const std::size_t at = upto >= 0 ? states[static_cast<std::size_t>(upto)] : dense - 1;
+  return renderer.motion_png(motion, at, options, shown.caption,
+                             format == "svg" ? render::ImageFormat::svg : render::ImageFormat::png);
 }
 
 std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,

@@ -28,6 +28,13 @@ struct RenderCancelled {};
 // N != 3 throws ApiError 422. Throws FieldError/RequestError for invalid requests.
 std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks);
+// Motion: the same requests as frames (an integration's frames default to kMotionFrames), drawn as a scene of
+// bodies (render/motion_of_problem.hpp); format webp (the default) animates every state, frame_ms each, png or svg
+// shows state upto (default the last).
+inline constexpr int kMotionFrames = 100;
+inline constexpr int kMotionFrameMs = 50;
+std::vector<unsigned char> render_motion(json request, const Limits& limits, render::Renderer& renderer,
+                                         const RenderHooks& hooks);
 // Heatmap: a SweepRequest or {"sweep": SweepResult}, plus metric/width/height (0 or absent: automatic).
 std::vector<unsigned char> render_heatmap(json request, const Limits& limits, render::Renderer& renderer,
                                           const RenderHooks& hooks);
@@ -62,5 +69,17 @@ const std::vector<fields::Field>& picture_fields();
 
 // Any of the above.
 using RenderRequestFn = std::vector<unsigned char> (*)(json, const Limits&, render::Renderer&, const RenderHooks&);
+
+// The render routes by name (render/NAME, lienewton render NAME): the request they draw, their picture options'
+// route, their function, and whether an integration's fields are taken beside the base request's (frames, motion).
+struct RenderRoute {
+  const char* name;
+  fields::Route base;
+  fields::Route picture;
+  RenderRequestFn draw;
+  bool integrations_too = false;
+};
+const std::vector<RenderRoute>& render_routes();
+const RenderRoute* find_render_route(std::string_view name);
 
 }  // namespace lienewton::service

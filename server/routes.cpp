@@ -37,6 +37,13 @@ std::vector<RouteSpec> build_table() {
       {&ApiHandlers::render_frames, "GET", "/api/v1/render/frames",
        "GET form of render/frames for <img src> (query parameters mirror RenderFramesRequest)", BodyKind::none, true,
        "RenderFramesRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
+      {&ApiHandlers::render_motion, "POST", "/api/v1/render/motion",
+       "The motion of a solve's iterates or an integration's states as a scene of bodies (solids from their inertia, "
+       "a traced path coloured by time): an animated WebP, or one state as PNG/SVG", BodyKind::json, true,
+       "RenderMotionRequest", {"image/webp", "image/png", "image/svg+xml"}, "", kJsonPostErrors},
+      {&ApiHandlers::render_motion, "GET", "/api/v1/render/motion",
+       "GET form of render/motion for <img src> (query parameters mirror RenderMotionRequest)", BodyKind::none, true,
+       "RenderMotionRequest", {"image/webp", "image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_heatmap, "POST", "/api/v1/render/heatmap",
        "PNG heatmap of a sweep (a sweep request, or {\"sweep\": <sweep result>}, or both: the result titled by its request)", BodyKind::json, true,
        "RenderHeatmapRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},

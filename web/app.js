@@ -1,8 +1,9 @@
-// Entry point: builds the five panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
+// Entry point: builds the six panels and the tab bar. Tabs follow the ARIA tabs pattern (arrow keys,
 // Home/End) and the URL: the hash names the panel, the query its settings (?n=8&h=2#solve), so a panel and its
 // form can be linked to and survive a reload.
 import { createBasinsPanel } from './panels/basins.js';
 import { createComparePanel } from './panels/compare.js';
+import { createMotionPanel } from './panels/motion.js';
 import { createSolvePanel } from './panels/solve.js';
 import { createSpeedPanel } from './panels/speed.js';
 import { createStabilityPanel } from './panels/stability.js';
@@ -52,6 +53,7 @@ const panels = {
   stability: createStabilityPanel(body('stability'), { openSolve }),
   basins: createBasinsPanel(body('basins'), { openSolve }),
   speed: createSpeedPanel(body('speed')),
+  motion: createMotionPanel(body('motion')),
 };
 
 const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);

@@ -45,6 +45,7 @@ constexpr const char* kUsage =
     "  integrate        time stepping with a Lie group integrator (implicit; rkmk4 explicit) -> result JSON\n"
     "  work-precision   CPU time vs global error per choice -> {\"series\": [...], ...}\n"
     "  render frames    solve (n = 3) or integrate request -> PNG of the rotation frames on stdout\n"
+    "  render motion    the same -> the bodies' motion as an animated WebP (--format png|svg: one state)\n"
     "  render heatmap   sweep request, or {\"sweep\": <sweep result>} -> PNG heatmap on stdout\n"
     "  render residuals solve request (methods, differentials lists) -> PNG of ||f(y_n)|| against CPU time\n"
     "  render work-precision  work-precision request -> PNG of CPU time against global error\n"
@@ -152,21 +153,10 @@ fields::Route route_of(const std::string& command, const std::string& sub) {
   if (command == "basins") return fields::basins;
   if (command == "integrate") return fields::integrate;
   if (command == "work-precision") return fields::work_precision;
-  if (sub == "heatmap") return fields::sweep;
-  if (sub == "basins") return fields::basins;
-  if (sub == "work-precision") return fields::work_precision;
-  if (sub == "invariants") return fields::integrate;
-  return fields::solve;  // frames of a solve, residuals
+  return find_render_route(sub)->base;
 }
 
-fields::Route picture_route_of(const std::string& sub) {
-  if (sub == "frames") return fields::render_frames;
-  if (sub == "heatmap") return fields::render_heatmap;
-  if (sub == "basins") return fields::render_basins;
-  if (sub == "work-precision") return fields::render_work_precision;
-  if (sub == "invariants") return fields::render_invariants;
-  return fields::render_residuals;
-}
+fields::Route picture_route_of(const std::string& sub) { return find_render_route(sub)->picture; }
 
 // A flag's text as the JSON value its field's row calls for: numbers, integers and true/false as JSON, a string as
 // it is, a list comma-separated (or JSON), an object or matrix as JSON. Text that is none of these is sent as a
@@ -214,7 +204,7 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
     std::string name = args[i].substr(2);
     for (char& c : name) c = c == '-' ? '_' : c;
     const fields::Field* f = fields::find(route_of(command, sub), name);
-    if (!f && render && sub == "frames") f = fields::find(fields::integrate, name);  // frames of an integration
+    if (!f && render && find_render_route(sub)->integrations_too) f = fields::find(fields::integrate, name);
     if (!f && render) {
       for (const fields::Field& p : picture_fields())
         if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
@@ -237,7 +227,7 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
 // The fields `lienewton command [sub]` takes: its route's rows, and a render's picture options.
 std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub) {
   std::vector<const fields::Field*> out = fields::fields_of(route_of(command, sub));
-  if (command == "render" && sub == "frames")  // a solve's fields, then an integration's
+  if (command == "render" && find_render_route(sub)->integrations_too)  // a solve's fields, then an integration's
     for (const fields::Field* f : fields::fields_of(fields::integrate))
       if (!f->takes(fields::solve)) out.push_back(f);
   if (command == "render")
@@ -282,13 +272,7 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
                                  [&](const WorkPrecisionSeries&) { return line.step(), true; }));
   } else {
     render::Renderer renderer(1);
-    const RenderRequestFn draw = sub == "frames"           ? render_frames
-                                 : sub == "basins"         ? render_basins
-                                 : sub == "residuals"      ? render_residuals
-                                 : sub == "work-precision" ? render_work_precision
-                                 : sub == "invariants"     ? render_invariants
-                                                           : render_heatmap;
-    const std::vector<unsigned char> picture = draw(body, limits, renderer, {});
+    const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, {});
     emit(std::string(picture.begin(), picture.end()), flags.out);
     return 0;
   }
@@ -344,8 +328,7 @@ bool plain_command(const std::string& c) {
   return c == "solve" || c == "sweep" || c == "basins" || c == "integrate" || c == "work-precision";
 }
 bool render_command(const std::string& sub) {
-  return sub == "frames" || sub == "heatmap" || sub == "basins" || sub == "residuals" || sub == "work-precision" ||
-         sub == "invariants";
+  return find_render_route(sub) != nullptr;
 }
 // --help or -h among the arguments after the command.
 bool asks_help(int argc, char** argv) {

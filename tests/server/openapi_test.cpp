@@ -218,7 +218,8 @@ TEST(OpenApi, RequestSchemasAreTheFieldTable) {
   const std::pair<const char*, fields::Route> renders[] = {
       {"RenderFramesRequest", fields::render_frames}, {"RenderHeatmapRequest", fields::render_heatmap},
       {"RenderBasinsRequest", fields::render_basins}, {"RenderWorkPrecisionRequest", fields::render_work_precision},
-      {"RenderResidualsRequest", fields::render_residuals}, {"RenderInvariantsRequest", fields::render_invariants}};
+      {"RenderResidualsRequest", fields::render_residuals}, {"RenderInvariantsRequest", fields::render_invariants},
+      {"RenderMotionRequest", fields::render_motion}};
   for (const auto& [name, route] : renders) {
     std::set<std::string> listed, rows;
     for (const auto& [key, _] : schemas[name]["properties"].items()) listed.insert(key);

@@ -48,6 +48,12 @@ export async function postJSON(path, body, { signal } = {}) {
   return res.json();
 }
 
+// The answer's bytes as a Blob of the asked type (an animation: image/webp).
+export async function postBlob(path, body, accept, { signal } = {}) {
+  const res = await post(path, body, accept, signal);
+  return res.blob();
+}
+
 // Resolves to an object URL of the PNG; the caller revokes it when the image is replaced.
 export async function postImage(path, body, { signal } = {}) {
   const res = await post(path, body, 'image/png', signal);

@@ -1,0 +1,109 @@
+// render/motion end to end: an animated WebP with a frame per state shown, the still of one state, the GET form,
+// the CLI's table of render routes, and the errors.
+#include <gtest/gtest.h>
+#include <webp/demux.h>
+
+#include <set>
+
+#include "../render/png_decode.hpp"
+#include "server/render_requests.hpp"
+#include "test_server.hpp"
+
+namespace lienewton::service {
+namespace {
+
+class MotionRoutes : public testing::SharedServerTest {};
+
+struct WebpInfo {
+  bool valid = false;
+  unsigned width = 0, height = 0, frames = 0;
+};
+
+WebpInfo webp_info(const std::string& body) {
+  const WebPData data{reinterpret_cast<const std::uint8_t*>(body.data()), body.size()};
+  WebPDemuxer* demux = WebPDemux(&data);
+  if (!demux) return {};
+  WebpInfo info{true, WebPDemuxGetI(demux, WEBP_FF_CANVAS_WIDTH), WebPDemuxGetI(demux, WEBP_FF_CANVAS_HEIGHT),
+                WebPDemuxGetI(demux, WEBP_FF_FRAME_COUNT)};
+  WebPDemuxDelete(demux);
+  return info;
+}
+
+TEST_F(MotionRoutes, AnIntegrationAnimatesOneFramePerShownState) {
+  auto res = client().Post("/api/v1/render/motion",
+                           R"({"problem":"heavy-top","integrator":"rkmk-gauss2","t_end":0.25,"frames":12,)"
+                           R"("width":160,"height":128,"frame_ms":30})",
+                           "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  EXPECT_EQ(res->get_header_value("Content-Type"), "image/webp");
+  const WebpInfo info = webp_info(res->body);
+  ASSERT_TRUE(info.valid);
+  EXPECT_EQ(info.width, 160u);
+  EXPECT_EQ(info.height, 128u);
+  EXPECT_EQ(info.frames, 13u);  // y(0) and the 12 evenly spaced states after it
+}
+
+TEST_F(MotionRoutes, ASolvesIteratesAreItsFrames) {
+  const nlohmann::json solve = post("/api/v1/solve", R"({"problem":"rigid-body","h":1})");
+  auto res = client().Post("/api/v1/render/motion", R"({"problem":"rigid-body","h":1,"width":128,"height":128})",
+                           "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  EXPECT_EQ(webp_info(res->body).frames, solve["iterations"].get<unsigned>() + 1);  // y_0, ..., y_n
+}
+
+TEST_F(MotionRoutes, PngAndSvgShowOneStateAndTheGetFormIsCached) {
+  auto png = client().Post("/api/v1/render/motion",
+                           R"({"problem":"chain","n":3,"t_end":0.5,"frames":8,"format":"png","upto":4,"width":200,"height":200})",
+                           "application/json");
+  ASSERT_TRUE(png);
+  ASSERT_EQ(png->status, 200) << png->body;
+  EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+  const render::testing::DecodedImage image =
+      render::testing::decode_png(std::vector<std::uint8_t>(png->body.begin(), png->body.end()));
+  EXPECT_EQ(image.width, 200);
+  auto svg = client().Post("/api/v1/render/motion", R"({"problem":"rigid-body","t_end":2,"format":"svg"})",
+                           "application/json");
+  ASSERT_TRUE(svg);
+  ASSERT_EQ(svg->status, 200) << svg->body;
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  // GET, for <img src>: an integration's fields beside a solve's; a repeat answers 304 from its ETag.
+  const std::string path = "/api/v1/render/motion?problem=heavy-top&t_end=0.1&frames=4&width=96&height=96";
+  auto get = client().Get(path);
+  ASSERT_TRUE(get);
+  ASSERT_EQ(get->status, 200) << get->body;
+  EXPECT_EQ(webp_info(get->body).frames, 5u);
+  auto again = client().Get(path, {{"If-None-Match", get->get_header_value("ETag")}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+}
+
+TEST_F(MotionRoutes, BadPicturesAreRefusedNamingTheField) {
+  const std::string opening = R"({"problem":"heavy-top","t_end":0.1,)";
+  const std::pair<const char*, const char*> invalid[] = {{R"("format":"gif"})", "format"},
+                                                         {R"("frame_ms":0})", "frame_ms"},
+                                                         {R"("frames":1001})", "frames"},
+                                                         {R"("width":10})", "width"},
+                                                         {R"("kind":"sweep"})", "kind"}};
+  for (const auto& [rest, field] : invalid) EXPECT_EQ(post("/api/v1/render/motion", opening + rest, 400)["error"]["field"], field);
+  // Past the last state shown: the request is well formed, the picture cannot be drawn.
+  expect_422_naming("/api/v1/render/motion", opening, {{R"("frames":4,"upto":5,"format":"png"})", "upto"}});
+  // A group without bodies: SO(4) has no rotation frames to draw.
+  const nlohmann::json e = post("/api/v1/render/motion", R"({"problem":"paper-linear","n":4})", 422);
+  EXPECT_EQ(e["error"]["field"], "n");
+}
+
+TEST(RenderRouteTable, NamesEachRouteOnceAndFindsThem) {
+  std::set<std::string> names;
+  for (const RenderRoute& r : render_routes()) {
+    EXPECT_TRUE(names.insert(r.name).second) << r.name;
+    EXPECT_EQ(find_render_route(r.name), &r);
+  }
+  EXPECT_EQ(find_render_route("movie"), nullptr);
+  EXPECT_TRUE(find_render_route("motion")->integrations_too);
+}
+
+}  // namespace
+}  // namespace lienewton::service
