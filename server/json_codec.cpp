@@ -1031,7 +1031,8 @@ json to_json(const WorkPrecisionSeries& s) {
   for (const auto& p : s.points) {
     points.push_back(json{{"h", finite_or_null(p.h)},
                           {"cpu_seconds", finite_or_null(p.cpu_seconds)},
-                          {"error", finite_or_null(p.error)},
+                          {"global_error", finite_or_null(p.error)},
+                          {"error", finite_or_null(p.error)},  // the old name of global_error, kept for clients
                           {"status", std::string(to_string(p.status))},
                           {"iterations", p.iterations},
                           {"substeps", p.substeps},
