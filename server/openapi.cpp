@@ -120,7 +120,12 @@ json schema_of(const fields::Field& f) {
     case Type::object: {
       std::vector<const fields::Field*> rows;
       for (const fields::Field& p : f.properties) rows.push_back(&p);
-      s = f.schema.empty() ? object(properties(rows), f.required) : ref(f.schema);
+      if (!f.schema.empty()) s = ref(f.schema);
+      else if (rows.empty())  // named values (parameters): a number, a row or a matrix each
+        s = json{{"type", "object"},
+                 {"additionalProperties", {{"anyOf", json::array({json{{"type", "number"}}, array_of(json{{"type", "number"}}),
+                                                                  array_of(array_of(json{{"type", "number"}}))})}}}};
+      else s = object(properties(rows), f.required);
       break;
     }
   }
@@ -443,6 +448,11 @@ json schemas() {
       {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_heatmap))}};
+  // A sweep result to draw is read without its timing.
+  json drawn_sweep = s["SweepResult"];
+  drawn_sweep["required"] = json::array({"cells"});
+  drawn_sweep["description"] = "a SweepResult to draw instead of running the sweep (seconds may be left out)";
+  s["RenderHeatmapRequest"]["properties"]["sweep"] = drawn_sweep;
   s["RenderBasinsRequest"] = json{
       {"description", "A BasinRequest plus width/height (0 or absent: automatic)."},
       {"type", "object"},
