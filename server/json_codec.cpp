@@ -1077,4 +1077,9 @@ json error_body(const RequestError& error) {
 
 std::string dump(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
 
+std::string stream_line(std::string_view type, const json& record) {
+  const std::string rest = dump(record);
+  return "{\"type\":" + dump(json(type)) + (rest.size() > 2 ? "," : "") + rest.substr(1);
+}
+
 }  // namespace lienewton::service
