@@ -259,9 +259,9 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
 // The fields `lienewton command [sub]` takes: its route's rows, and a render's picture options.
 std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub) {
   std::vector<const fields::Field*> out = fields::fields_of(route_of(command, sub));
-  if (command == "render" && sub == "frames")  // a solve's fields, then an integration's
+  if (command == "render" && sub == "frames")  // a solve's fields, then an integration's own (h, problem: the solve's)
     for (const fields::Field* f : fields::fields_of(fields::integrate))
-      if (!f->takes(fields::solve)) out.push_back(f);
+      if (!fields::find(fields::solve, f->name)) out.push_back(f);
   if (command == "render")
     for (const fields::Field& p : picture_fields())
       if (p.takes(picture_route_of(sub))) out.push_back(&p);

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Validates the service's answers against its own /openapi.json.
 
-  validate_answers.py SERVER_BIN
+  validate_answers.py SERVER_BIN [--cli LIENEWTON_BIN]
 
 Starts the server, fetches /openapi.json and
 - replays every request of requests.json (replay.py's) and validates the answer as sent (timing fields kept):
@@ -11,13 +11,17 @@ Starts the server, fetches /openapi.json and
   itself be valid by the operation's request schema;
 - sends every request example of the document to its POST route: it must be valid by the request schema and
   answered 200 with a valid answer; every README request body (curl -d '...') must be one of its route's examples;
-- checks that every error code the sources throw is in ErrorDetail's enum.
+- checks that every error code the sources throw is in ErrorDetail's enum;
+- with --cli, runs each CLI entry of a streaming route as `lienewton COMMAND --stream`: every line must be valid by
+  the route's stream schema and the records those of the server's NDJSON stream of the same request (timing
+  aside, in any order: a sweep's cells come as they finish).
 OpenAPI 3.0's schemas are JSON Schema draft 4 plus nullable, which is rewritten as a type that admits null.
 Exit status 0 when everything validates.
 """
 import json
 import os
 import re
+import subprocess
 import sys
 import tempfile
 import urllib.parse
@@ -151,8 +155,35 @@ def source_codes():
     return codes
 
 
+STREAM_ROUTES = {"/api/v1/solve", "/api/v1/sweep", "/api/v1/basins", "/api/v1/integrate", "/api/v1/work-precision"}
+
+
+def check_cli_stream(doc, port, cli_bin, entry):
+    """The CLI's --stream against the schema and against the server's NDJSON stream of the same body."""
+    proc = subprocess.run([cli_bin, *entry["cli"].split(), "--stream"], input=json.dumps(entry["body"]).encode(),
+                          capture_output=True, timeout=replay.TIMEOUT)
+    status, _, data = replay.request(port, "POST", entry["path"], json.dumps(entry["body"]).encode(),
+                                     {"Content-Type": "application/json", "Accept": "application/x-ndjson"})
+    if status != 200:  # refused before any record, as the server refuses before its stream: the same error
+        want = json.loads(data)["error"]["code"]
+        got = json.loads(proc.stderr)["error"]["code"] if proc.stderr.strip() else None
+        return [] if proc.returncode == 2 and not proc.stdout and got == want else [
+            f"the server refused with {want}; the CLI exited {proc.returncode} with {proc.stderr[:200]!r}"]
+    if proc.returncode != 0:
+        return [f"exit {proc.returncode}: {proc.stderr[:300]!r}"]
+    schema = doc.operation("POST", entry["path"])["responses"]["200"]["content"]["application/x-ndjson"]["schema"]
+    lines = [json.loads(line) for line in proc.stdout.decode().splitlines() if line.strip()]
+    faults = [f"line {i + 1}: {f}" for i, line in enumerate(lines) for f in doc.validate(line, schema)]
+    served = [json.loads(line) for line in data.decode().splitlines() if line.strip()]
+    key = lambda record: json.dumps(record, sort_keys=True)  # noqa: E731
+    ours = sorted((replay.strip_timing(r) for r in lines), key=key)
+    theirs = sorted((replay.strip_timing(r) for r in served), key=key)
+    return faults + [f"differs from the server's stream: {d}" for d in replay.differences(theirs, ours)][:10]
+
+
 def main():
     server_bin = os.path.realpath(sys.argv[1])
+    cli_bin = os.path.realpath(sys.argv[3]) if len(sys.argv) > 3 and sys.argv[2] == "--cli" else None
     with open(os.path.join(replay.HERE, "requests.json")) as f:
         entries = json.load(f)
     failures, checked = [], 0
@@ -203,6 +234,9 @@ def main():
                 faults = [] if body in examples.get(path, []) else [
                     f"the README sends {json.dumps(body)} to {path}, which is not among its examples"]
                 report(f"README request to {path}", faults)
+            for entry in entries if cli_bin else []:
+                if "cli" in entry and entry["path"] in STREAM_ROUTES:
+                    report(f"cli-{entry['name']} --stream", check_cli_stream(doc, port, cli_bin, entry))
             codes = set(doc.doc["components"]["schemas"]["ErrorDetail"]["properties"]["code"]["enum"])
             missing = sorted(source_codes() - codes)
             report("error codes of the sources", [f"code {c} is not in ErrorDetail's enum" for c in missing])
