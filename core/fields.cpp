@@ -91,6 +91,12 @@ Field enumeration(const char* name, const E (&all)[K], Routes routes, std::vecto
                .description = std::move(description), .values = names(all), .default_value = std::move(default_value)};
 }
 
+// An enum value's API name, as a row's default.
+template <class E>
+Default api_name(E value) {
+  return std::string(to_string(value));
+}
+
 Field boolean(const char* name, Routes routes, Member lands, std::string description) {
   return Field{.name = name, .type = Type::boolean, .routes = routes, .lands = {lands},
                .description = std::move(description), .default_value = false};
@@ -189,7 +195,12 @@ std::vector<Field> build() {
       "showed z's branch folds before h, else unchecked; found_by and multistart_start say where it came from";
 
   std::vector<Field> t;
-  t.push_back(enumeration("problem", kAllProblems, kProblemRoutes, {&ProblemSpec::kind}, "test problem"));
+  // A default is the request struct's own (what the codec leaves in place), so that /openapi.json states what the
+  // server applies; where routes' structs differ, one row per default.
+  t.push_back(enumeration("problem", kAllProblems, solve | sweep | basins, {&ProblemSpec::kind}, "test problem",
+                          api_name(ProblemSpec{}.kind)));
+  t.push_back(enumeration("problem", kAllProblems, integrate | work_precision, {&ProblemSpec::kind}, "test problem",
+                          api_name(IntegrateRequest{}.problem.kind)));
   t.push_back(Field{.name = "g", .type = Type::string, .routes = kProblemRoutes, .lands = {&ProblemSpec::g},
                     .description = "your own field g(y) instead of problem (both: 422), in MATLAB notation: a program "
                                    "over the n x n matrix y (and t: the stage time in integrate and work-precision, 0 elsewhere; pi; the parameters), statements separated by ; "
@@ -266,9 +277,12 @@ std::vector<Field> build() {
                      three_numbers("gravity", &ChainParams::gravity, "gamma: gravity in space", false),
                      chain_number("tilt", &ChainParams::tilt, "the start's angle about x from hanging down (rad)",
                                   -std::numbers::pi, false)}});
-  t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text));
-  t.push_back(enumeration("differential", kAllDifferentials, solve | sweep | integrate | basins,
-                          {&SolverOptions::differential}, differential_text));
+  t.push_back(enumeration("method", kAllMethods, solve | integrate, {&SolverOptions::method}, method_text,
+                          api_name(SolverOptions{}.method)));
+  t.push_back(enumeration("differential", kAllDifferentials, solve | integrate | basins, {&SolverOptions::differential},
+                          differential_text, api_name(SolverOptions{}.differential)));
+  t.push_back(enumeration("differential", kAllDifferentials, sweep, {&SolverOptions::differential}, differential_text,
+                          api_name(SweepRequest{}.solver.differential)));
   t.push_back(number(tol, kProblemRoutes, {&SolverOptions::tol}));
   t.push_back(integer(max_iterations, kProblemRoutes, {&SolverOptions::max_iterations}, Cap::iterations));
   t.push_back(enumeration("linear_solver", kAllLinearSolvers, kProblemRoutes, {&SolverOptions::linear_solver},
@@ -303,7 +317,10 @@ std::vector<Field> build() {
   t.push_back(multistart_row);
   t.push_back(boolean("include_iterates", solve, &SolverOptions::include_iterates,
                       "keep every iterate y_n in the trace (TraceRecord.y)"));
-  t.push_back(number(h, solve | integrate | basins, {&SolveRequest::h, &IntegrateRequest::h}));
+  Field solve_h = number(h, solve | basins, {&SolveRequest::h});
+  solve_h.default_value = SolveRequest{}.h;
+  t.push_back(solve_h);
+  t.push_back(number(h, integrate, {&IntegrateRequest::h}));
   t.push_back(Field{.name = "y0", .type = Type::matrix, .routes = solve, .lands = {&SolveRequest::y0},
                     .description = "starting guess of the iteration (default: z, as the paper): N x N rows, "
                                    "orthogonal to 1e-10, in the component of z (det y0 = det z); z stays the "
@@ -312,7 +329,8 @@ std::vector<Field> build() {
   t.push_back(enumeration("integrator", kAllIntegrators, integrate, {&IntegrateRequest::integrator},
                           "Lie group integrator: implicit-euler, dirk-cg2/3 (Crouch-Grossman DIRK, stage by stage), "
                           "rkmk-gauss1/2/3 and rkmk-radau2/3 (implicit RKMK, coupled stages in the algebra), rkmk4 "
-                          "(explicit)"));
+                          "(explicit)",
+                          api_name(IntegrateRequest{}.integrator)));
   t.push_back(tolerance(rtol, integrate, {&IntegrateRequest::rtol}));
   t.push_back(tolerance(atol, integrate, {&IntegrateRequest::atol}));
   t.push_back(integer(max_steps, integrate, {&IntegrateRequest::max_steps}));
@@ -330,10 +348,13 @@ std::vector<Field> build() {
                                          "every integrator with newton-group and the exact differential)",
                           .schema = "WorkPrecisionChoice",
                           .properties = {enumeration("integrator", kAllIntegrators, 0, {&WorkPrecisionChoice::integrator},
-                                                     "Lie group integrator (as integrate's integrator)"),
-                                         enumeration("method", kAllMethods, 0, {&WorkPrecisionChoice::method}, method_text),
+                                                     "Lie group integrator (as integrate's integrator)",
+                                                     api_name(WorkPrecisionChoice{}.integrator)),
+                                         enumeration("method", kAllMethods, 0, {&WorkPrecisionChoice::method}, method_text,
+                                                     api_name(WorkPrecisionChoice{}.method)),
                                          enumeration("differential", kAllDifferentials, 0,
-                                                     {&WorkPrecisionChoice::differential}, differential_text)}},
+                                                     {&WorkPrecisionChoice::differential}, differential_text,
+                                                     api_name(WorkPrecisionChoice{}.differential))}},
                     1, 64, "choice objects"));
   Field wp_h = number(h, work_precision, {&WorkPrecisionRequest::h});
   t.push_back(array(wp_h, 1, 64, "step sizes"));

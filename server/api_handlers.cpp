@@ -353,9 +353,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
   res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
   res.stream = [this, slot, job = std::move(job), token, sse, metrics = &metrics_](const ChunkSink& sink) {
     auto write = [&](const char* kind, json record) {
-      // "type" first, for people reading the stream; the rest keeps the result's field order.
-      std::string line = dump(record);
-      line = std::string("{\"type\":\"") + kind + "\"" + (line.size() > 2 ? "," : "") + line.substr(1);
+      const std::string line = stream_line(kind, record);
       const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + line + "\n\n" : line + "\n";
       if (!sink(text)) {
         token->cancel(CancelReason::client_gone);

@@ -1031,7 +1031,8 @@ json to_json(const WorkPrecisionSeries& s) {
   for (const auto& p : s.points) {
     points.push_back(json{{"h", finite_or_null(p.h)},
                           {"cpu_seconds", finite_or_null(p.cpu_seconds)},
-                          {"error", finite_or_null(p.error)},
+                          {"global_error", finite_or_null(p.error)},
+                          {"error", finite_or_null(p.error)},  // the old name of global_error, kept for clients
                           {"status", std::string(to_string(p.status))},
                           {"iterations", p.iterations},
                           {"substeps", p.substeps},
@@ -1075,5 +1076,10 @@ json error_body(const RequestError& error) {
 }
 
 std::string dump(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+std::string stream_line(std::string_view type, const json& record) {
+  const std::string rest = dump(record);
+  return "{\"type\":" + dump(json(type)) + (rest.size() > 2 ? "," : "") + rest.substr(1);
+}
 
 }  // namespace lienewton::service

@@ -85,5 +85,8 @@ json error_body(const RequestError& error);
 
 // Serialises without ever throwing on invalid UTF-8 (replaced) and without NaN/Inf (to_json writes null).
 std::string dump(const json& value);
+// One record of a stream (an NDJSON line without its newline, an SSE data field): {"type": type, ...record}, type
+// first for people reading it, the rest in the record's order. The service's streams and `lienewton --stream`.
+std::string stream_line(std::string_view type, const json& record);
 
 }  // namespace lienewton::service

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "core/basins.hpp"
@@ -11,6 +12,7 @@
 #include "core/fields.hpp"
 #include "core/group_registry.hpp"
 #include "server/json_codec.hpp"
+#include "server/openapi_examples.hpp"
 #include "server/openapi_labels.hpp"
 #include "server/render_requests.hpp"
 #include "server/routes.hpp"
@@ -118,7 +120,12 @@ json schema_of(const fields::Field& f) {
     case Type::object: {
       std::vector<const fields::Field*> rows;
       for (const fields::Field& p : f.properties) rows.push_back(&p);
-      s = f.schema.empty() ? object(properties(rows), f.required) : ref(f.schema);
+      if (!f.schema.empty()) s = ref(f.schema);
+      else if (rows.empty())  // named values (parameters): a number, a row or a matrix each
+        s = json{{"type", "object"},
+                 {"additionalProperties", {{"anyOf", json::array({json{{"type", "number"}}, array_of(json{{"type", "number"}}),
+                                                                  array_of(array_of(json{{"type", "number"}}))})}}}};
+      else s = object(properties(rows), f.required);
       break;
     }
   }
@@ -178,6 +185,86 @@ json matrix(const char* description) {
   json m = array_of(array_of(json{{"type", "number"}}));
   m["description"] = description;
   return m;
+}
+
+// Every code an error carries (the service's and the CLI's): the codec's (json_codec.cpp), the front end's
+// refusals (request_limits.cpp, http_server.cpp), the handlers' (ApiError) and the CLI's own (usage,
+// output_failed). tests/replay/validate_answers.py checks the sources name no other.
+json error_codes() {
+  static const char* const kCodes[] = {
+      "invalid_field", "unknown_field", "duplicate_field", "malformed_json", "unprocessable", "program_too_large",
+      "output_too_large", "bad_request", "not_found", "method_not_allowed", "length_required", "invalid_content_length",
+      "unexpected_body", "body_too_large", "incomplete_body", "uri_too_long", "unsupported_media_type",
+      "unsupported_content_encoding", "not_acceptable", "cross_site", "multiple_ranges", "range_not_satisfiable",
+      "invalid_header", "too_many_headers", "client_over_capacity", "over_capacity", "server_busy", "shutting_down",
+      "deadline_exceeded", "client_gone", "render_unavailable", "out_of_memory", "internal_error", "error", "usage",
+      "output_failed"};
+  json values = json::array();
+  for (const char* code : kCodes) values.push_back(code);
+  return json{{"type", "string"}, {"enum", values},
+              {"description", "what went wrong, for a program to branch on (the status says how bad; message says it "
+                              "to a person). error: a status the server has no own code for; usage and "
+                              "output_failed: the CLI only"}};
+}
+
+// A stream's record of kind `type`: the named schema `of` plus its type.
+json stream_record(const json& s, const std::string& of, const std::string& type, const std::string& description) {
+  json r = s.at(of);
+  r["properties"]["type"] = json{{"type", "string"}, {"enum", {type}}};
+  json required = r.value("required", json::array());
+  required.push_back("type");
+  r["required"] = required;
+  r["description"] = description;
+  return r;
+}
+
+// The NDJSON lines (and SSE data fields) of each streaming route: progress records, then exactly one terminal
+// record, result (the fields of the non-streamed result) or error. Each route's stream is a oneOf told apart by
+// type (the discriminator).
+void add_stream_records(json& s) {
+  s["IterationRecord"] = stream_record(s, "TraceRecord", "iteration", "a solve's iteration (TraceRecord)");
+  s["PathPointRecord"] = stream_record(s, "TraceRecord", "path_point",
+                                       "continuation: a point of the path (TraceRecord with path_point)");
+  s["PathPointRecord"]["required"].push_back("path_point");
+  s["CellRecord"] = stream_record(s, "SweepCell", "cell", "a finished sweep cell");
+  s["StepStreamRecord"] = stream_record(s, "StepRecord", "step", "an integration step");
+  s["SeriesRecord"] = stream_record(s, "WorkPrecisionSeries", "series", "a finished work-precision series");
+  s["GridRecord"] = stream_record(s, "BasinGrid", "grid", "the basin map's grid, first");
+  s["RowRecord"] = stream_record(s, "BasinRow", "row", "a finished row of the basin map");
+  s["SolveResultRecord"] = stream_record(s, "SolveResult", "result", "the solve's result, last");
+  s["SweepResultRecord"] = stream_record(s, "SweepResult", "result", "the sweep's result, last");
+  json summary = stream_record(s, "BasinResult", "result", "the basin map's summary, last: BasinResult without grid and rows");
+  summary["properties"].erase("grid");
+  summary["properties"].erase("rows");
+  json required = json::array();
+  for (const auto& name : summary["required"])
+    if (name != "grid" && name != "rows") required.push_back(name);
+  summary["required"] = required;
+  s["BasinSummaryRecord"] = summary;
+  s["IntegrateResultRecord"] = stream_record(s, "IntegrateResult", "result", "the integration's result, last");
+  s["WorkPrecisionResultRecord"] = stream_record(s, "WorkPrecisionResult", "result", "the work-precision result, last");
+  s["ErrorRecord"] = stream_record(s, "Error", "error", "the work failed after the stream began: the error, last");
+  const auto stream = [&](const char* name, const char* what,
+                          std::vector<std::pair<std::string, std::string>> records) {
+    json one_of = json::array(), mapping = json::object();
+    records.emplace_back("error", "ErrorRecord");
+    for (const auto& [type, schema] : records) {
+      one_of.push_back(ref(schema));
+      mapping[type] = "#/components/schemas/" + schema;
+    }
+    s[name] = json{{"description", what}, {"oneOf", one_of},
+                   {"discriminator", {{"propertyName", "type"}, {"mapping", mapping}}}};
+  };
+  stream("SolveStreamRecord", "One NDJSON line (or SSE data field) of a solve: iteration and path_point records, then result or error.",
+         {{"iteration", "IterationRecord"}, {"path_point", "PathPointRecord"}, {"result", "SolveResultRecord"}});
+  stream("SweepStreamRecord", "One NDJSON line of a sweep: a cell record per finished cell, then result or error.",
+         {{"cell", "CellRecord"}, {"result", "SweepResultRecord"}});
+  stream("BasinStreamRecord", "One NDJSON line of a basin map: grid, a row record per finished row, then the summary or error.",
+         {{"grid", "GridRecord"}, {"row", "RowRecord"}, {"result", "BasinSummaryRecord"}});
+  stream("IntegrateStreamRecord", "One NDJSON line of an integration: a step record per step, then result or error.",
+         {{"step", "StepStreamRecord"}, {"result", "IntegrateResultRecord"}});
+  stream("WorkPrecisionStreamRecord", "One NDJSON line of work-precision: a series record per choice, then result or error.",
+         {{"series", "SeriesRecord"}, {"result", "WorkPrecisionResultRecord"}});
 }
 
 json schemas() {
@@ -328,10 +415,12 @@ json schemas() {
       invariant_numbers(invariant_numbers(invariant_numbers(s["IntegrateResult"]["properties"], "initial_", "", "at y(0): "),
                                           "", "_scale", "the size the drift is relative to (1 where it is 0), of "),
                         "", "_drift", "max over the steps of |I(y_k) - I(y(0))| / I_scale, I = ");
-  s["WorkPrecisionResult"] = object(
-      {{"series", array_of(object({{"choice", ref("WorkPrecisionChoice")},
+  json deprecated_error = nullable_number("deprecated: the old name of global_error, the same number");
+  deprecated_error["deprecated"] = true;
+  s["WorkPrecisionSeries"] = object({{"choice", ref("WorkPrecisionChoice")},
                                    {"points", array_of(object(invariant_numbers(json{{"h", number("")}, {"cpu_seconds", number("")},
-                                                               {"error", nullable_number("global error")},
+                                                               {"global_error", nullable_number("||y_N - y_ref(t_end)||_F, as IntegrateResult's")},
+                                                               {"error", deprecated_error},
                                                                {"status", status}, {"iterations", integer("")},
                                                                {"substeps", integer("steps taken (halving included)")},
                                                                {"tolerance", nullable_number("against tolerance: the run's rtol = atol (null with fixed steps; h is then the mean accepted step)")},
@@ -346,17 +435,9 @@ json schemas() {
                                                                     "fit_reason says why)")},
                                    {"fit_reason", json{{"type", "string"}, {"description", "how the order was fitted, or why it is null"}}},
                                    {"fit_h", array_of(number("an h the order is fitted from"))}},
-                                  {}, false))},
-       {"seconds", number("")}, {"reference_seconds", number("")}}, {}, false);
-  s["SolveStreamRecord"] = json{
-      {"description", "One NDJSON line / SSE data field. type is iteration|path_point|cell|step|series|grid|row for progress records "
-                      "(the fields of TraceRecord (path_point: a continuation path point, TraceRecord with path_point), SweepCell, StepRecord, a series, BasinGrid or BasinRow; a basin "
-                      "stream's result is the summary: BasinResult without grid and rows), then exactly one terminal record: "
-                      "result (the fields of the non-streamed result) or error (with an error object)."},
-      {"type", "object"},
-      {"properties", {{"type", json{{"type", "string"}, {"enum", {"iteration", "path_point", "cell", "step", "series", "grid", "row", "result", "error"}}}},
-                      {"error", ref("ErrorDetail")}}},
-      {"required", {"type"}}};
+                                  {}, false);
+  s["WorkPrecisionResult"] = object({{"series", array_of(ref("WorkPrecisionSeries"))}, {"seconds", number("")},
+                                     {"reference_seconds", number("")}}, {}, false);
   s["RenderFramesRequest"] = json{
       {"description", "A SolveRequest (n = 3; its iterates are drawn) or an IntegrateRequest (detected by kind = "
                       "\"integrate\" or by any of integrator/t_end/frames; the trajectory's states are drawn, frames "
@@ -375,6 +456,11 @@ json schemas() {
       {"description", "A SweepRequest, or {\"sweep\": SweepResult}, plus metric/width/height (0 or absent: automatic)."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_heatmap))}};
+  // A sweep result to draw is read without its timing.
+  json drawn_sweep = s["SweepResult"];
+  drawn_sweep["required"] = json::array({"cells"});
+  drawn_sweep["description"] = "a SweepResult to draw instead of running the sweep (seconds may be left out)";
+  s["RenderHeatmapRequest"]["properties"]["sweep"] = drawn_sweep;
   s["RenderBasinsRequest"] = json{
       {"description", "A BasinRequest plus width/height (0 or absent: automatic)."},
       {"type", "object"},
@@ -399,7 +485,7 @@ json schemas() {
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_invariants))}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);
-  s["ErrorDetail"] = object({{"code", json{{"type", "string"}, {"description", "invalid_field, unknown_field, duplicate_field, malformed_json, unprocessable, not_found, method_not_allowed, length_required, body_too_large, unsupported_media_type, not_acceptable, over_capacity, client_over_capacity, server_busy, invalid_header, too_many_headers, shutting_down, deadline_exceeded, render_unavailable, internal_error, ..."}}},
+  s["ErrorDetail"] = object({{"code", error_codes()},
                              {"field", json{{"type", "string"}, {"nullable", true}, {"description", "the offending request field"}}},
                              {"message", json{{"type", "string"}}},
                              {"line", json{{"type", "integer"}, {"description", "a program's error (field g): its line, from 1"}}},
@@ -409,6 +495,7 @@ json schemas() {
   s["Version"] = object({{"version", json{{"type", "string"}, {"description", "the release, as info.version"}}},
                          {"build", json{{"type", "string"}, {"description", "a hash of this server's binary"}}}},
                         {"version", "build"}, false);
+  add_stream_records(s);
   return s;
 }
 
@@ -462,15 +549,36 @@ std::string tag_of(const std::string& path) {
   return "compute";
 }
 
+// The records a streaming route sends: SolveResult's route streams SolveStreamRecord, and so on.
+std::string stream_schema(const RouteSpec& r) {
+  const std::string& result = r.result_schema;
+  if (result.size() > 12 && result.compare(result.size() - 12, 12, "StreamRecord") == 0) return result;
+  return result.substr(0, result.size() - std::string("Result").size()) + "StreamRecord";
+}
+
 // Query parameters of a GET form: one per property of the request schema (see query_params.hpp).
 json query_parameters(const json& all_schemas, const std::string& schema) {
   json params = json::array();
+  std::set<std::string> named;
+  // A parameter has its field's schema: a number, string or boolean as such, a list of them comma-separated (or
+  // as [..]); an object, a matrix or a list of objects as JSON text.
   auto add = [&](const json& s) {
     if (!s.contains("properties")) return;
-    for (const auto& [name, _] : s["properties"].items()) {
-      params.push_back(json{{"name", name}, {"in", "query"}, {"required", false},
-                            {"description", "mirrors the JSON field; arrays as [..] or comma-separated"},
-                            {"schema", {{"type", "string"}}}});
+    for (const auto& [name, field] : s["properties"].items()) {
+      if (!named.insert(name).second) continue;
+      const auto plain = [](const json& t) {
+        return !t.contains("$ref") && t.value("type", "") != "object" && t.value("type", "") != "array";
+      };
+      const bool list = field.value("type", "") == "array" && plain(field["items"]);
+      json p{{"name", name}, {"in", "query"}, {"required", false}, {"description", field.value("description", "")}};
+      if (plain(field) || list) {
+        p["schema"] = field;
+        if (list) p["style"] = "form", p["explode"] = false;
+      } else {
+        p["content"] = {{"application/json", {{"schema", field}}}};
+        p["description"] = p["description"].get<std::string>() + (p["description"] == "" ? "" : " ") + "(as JSON text)";
+      }
+      params.push_back(std::move(p));
     }
   };
   add(all_schemas[schema]);
@@ -496,16 +604,19 @@ std::string openapi_document(const ServerOptions& options) {
     json op{{"operationId", operation_id(r)}, {"summary", r.summary}, {"tags", json::array({tag_of(r.path)})}};
     if (!r.request_schema.empty()) {
       if (r.method == "POST") {
-        op["requestBody"] = {{"required", true}, {"content", {{"application/json", {{"schema", ref(r.request_schema)}}}}}};
+        json media{{"schema", ref(r.request_schema)}};
+        if (const json examples = request_examples(r.request_schema); !examples.empty()) media["examples"] = examples;
+        op["requestBody"] = {{"required", true}, {"content", {{"application/json", media}}}};
       } else {
         op["parameters"] = query_parameters(all, r.request_schema);
       }
     }
     json content = json::object();
+    const std::string stream_name = stream_schema(r);
     for (const auto& type : r.success_types) {
       json media = json::object();
       if (type == "application/json" && !r.result_schema.empty()) media["schema"] = ref(r.result_schema);
-      else if (type == "application/x-ndjson" || type == "text/event-stream") media["schema"] = ref("SolveStreamRecord");
+      else if (type == "application/x-ndjson" || type == "text/event-stream") media["schema"] = ref(stream_name);
       else if (type == "image/png" || type == "image/webp") media["schema"] = {{"type", "string"}, {"format", "binary"}};
       else media["schema"] = {{"type", "string"}};
       content[type] = media;
@@ -535,6 +646,11 @@ std::string openapi_document(const ServerOptions& options) {
            {"tags", json::array({json{{"name", "compute"}, {"description", "solves, stability and basin maps, integration, work-precision"}},
                                  json{{"name", "render"}, {"description", "pictures of the same requests (PNG or SVG)"}},
                                  json{{"name", "service"}, {"description", "health, metrics, version, this document, the dashboard"}}})},
+           // Relative: the document describes the server that sends it; the second entry is for a saved copy.
+           {"servers", json::array({json{{"url", "/"}, {"description", "the server that sent this document"}},
+                                    json{{"url", "http://{host}:{port}"}, {"description", "a server by address"},
+                                         {"variables", {{"host", {{"default", "localhost"}}},
+                                                        {"port", {{"default", std::to_string(options.port)}}}}}}})},
            {"paths", paths},
            {"components", {{"schemas", all}}},
            {"x-lienewton", openapi_labels(options)}};

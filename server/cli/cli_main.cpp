@@ -24,6 +24,7 @@
 #include "server/cli/command_help.hpp"
 #include "server/cli/paper_figures.hpp"
 #include "server/cli/progress_line.hpp"
+#include "server/cli/table_output.hpp"
 #include "server/render_requests.hpp"
 #ifdef LIENEWTON_MPI
 #include "server/cli/mpi_farm.hpp"
@@ -33,6 +34,7 @@ namespace {
 
 using namespace lienewton;
 using namespace lienewton::service;
+using lienewton::cli::Format;
 using lienewton::cli::ProgressLine;
 
 constexpr const char* kUsage =
@@ -65,6 +67,10 @@ constexpr const char* kUsage =
     "Long commands show their progress on stderr when it is a terminal (--quiet: not).\n"
     "--pretty indents the JSON result; --out FILE writes the answer to FILE (whole, or not at all) instead of stdout,\n"
     "which never takes a picture when it is a terminal.\n"
+    "--stream (solve, sweep, basins, integrate, work-precision) prints the records of the HTTP API's NDJSON stream on\n"
+    "stdout as they come, one JSON line each, the result (a basin map's summary) last: {\"type\": ...} as /openapi.json's\n"
+    "*StreamRecord. --format csv|table prints the result's rows instead of its JSON: a solve's trace, a sweep's\n"
+    "cells, an integration's steps, the work-precision points, a basin map's methods (scalar fields only).\n"
     "\n"
     "Any N the machine can hold is accepted (the server's --max-n cap does not apply here).\n"
     "Built with -DLIENEWTON_MPI=ON, `mpirun -n P lienewton sweep|basins|figures` (or srun) spreads the cells or\n"
@@ -180,6 +186,8 @@ struct Flags {
   json fields = json::object();
   bool pretty = false;
   bool quiet = false;              // --quiet: no progress line
+  bool stream = false;             // --stream: NDJSON records on stdout as they come
+  Format format = Format::json;    // --format json|csv|table
   std::optional<std::string> out;  // --out FILE
 };
 
@@ -199,6 +207,18 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
       out.out = args[++i];
       continue;
     }
+    if (args[i] == "--stream") {
+      if (render) throw ApiError(400, "usage", "stream", "a render command has no stream: it answers one picture");
+      out.stream = true;
+      continue;
+    }
+    if (args[i] == "--format" && !render) {
+      const std::string value = i + 1 < args.size() ? args[++i] : "";
+      if (value != "json" && value != "csv" && value != "table")
+        throw ApiError(400, "usage", "format", "--format takes json, csv or table");
+      out.format = value == "csv" ? Format::csv : value == "table" ? Format::table : Format::json;
+      continue;
+    }
     if (args[i].rfind("--", 0) != 0 || args[i].size() < 3)
       throw ApiError(400, "usage", "", "expected --FIELD VALUE or --pretty, got " + args[i] + "; see lienewton --help");
     std::string name = args[i].substr(2);
@@ -210,7 +230,7 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
         if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
     }
     if (!f) {
-      std::vector<std::string> names{"pretty", "quiet", "out"};
+      std::vector<std::string> names{"pretty", "quiet", "out", "stream", "format"};
       for (const fields::Field* field : command_fields(command, sub)) names.push_back(field->name);
       const std::optional<std::string> guess = nearest(name, names);
       std::string dashed = guess.value_or("");
@@ -221,15 +241,17 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
     if (i + 1 >= args.size()) throw ApiError(400, "usage", name, "--" + args[i].substr(2) + " needs a value");
     out.fields[name] = flag_value(*f, args[++i]);
   }
+  if (out.stream && (out.out || out.format != Format::json))
+    throw ApiError(400, "usage", "stream", "--stream writes JSON records to stdout: not with --out or --format");
   return out;
 }
 
 // The fields `lienewton command [sub]` takes: its route's rows, and a render's picture options.
 std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub) {
   std::vector<const fields::Field*> out = fields::fields_of(route_of(command, sub));
-  if (command == "render" && find_render_route(sub)->integrations_too)  // a solve's fields, then an integration's
+  if (command == "render" && find_render_route(sub)->integrations_too)  // a solve's fields, then an integration's own (h, problem: the solve's)
     for (const fields::Field* f : fields::fields_of(fields::integrate))
-      if (!f->takes(fields::solve)) out.push_back(f);
+      if (!fields::find(fields::solve, f->name)) out.push_back(f);
   if (command == "render")
     for (const fields::Field& p : picture_fields())
       if (p.takes(picture_route_of(sub))) out.push_back(&p);
@@ -248,36 +270,60 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
   const bool show = part.prints && !flags.quiet && isatty(STDERR_FILENO);
+  // --stream: each record as the service's NDJSON stream sends it (made only when streaming).
+  const auto record = [&](std::string_view type, const auto& make) {
+    if (!flags.stream || !part.prints) return;
+    const std::string line = service::stream_line(type, make()) + "\n";
+    std::fwrite(line.data(), 1, line.size(), stdout);
+    std::fflush(stdout);
+  };
   json out;
   if (command == "solve") {
     const SolveRequest r = solve_request_from_json(body, limits);
-    out = to_json(solve(r), r.solver.include_iterates);
+    const bool iterates = r.solver.include_iterates;
+    out = to_json(solve(r, [&](const TraceRecord& t) {
+      record(t.path_point ? "path_point" : "iteration", [&] { return to_json(t, iterates); });
+      return true;
+    }), iterates);
   } else if (command == "sweep") {
     const SweepRequest r = sweep_request_from_json(body, limits);
     const SweepRequest full = with_defaults(r);
     ProgressLine line("sweep", "cells", r.shard ? 0 : full.methods.size() * full.n.size() * full.h.size(), show);
-    out = to_json(sweep(r, [&](const SweepCell&) { return line.step(), true; }, {}, part.farm));
+    out = to_json(sweep(r, [&](const SweepCell& cell) {
+      record("cell", [&] { return to_json(cell); });
+      return line.step(), true;
+    }, {}, part.farm));
   } else if (command == "basins") {
     const BasinRequest r = basin_request_from_json(body, limits);
     ProgressLine line("basins", "rows", basin_shard_rows(r.size, r.shard).size(), show);
-    out = to_json(basins(r, [&](const BasinRow&, const std::vector<BasinRoot>&) { return line.step(), true; },
-                         part.farm),
-                  r.methods);
+    record("grid", [&] { return to_json(basin_grid(r)); });
+    const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
+      record("row", [&] { return to_json(row, roots, r.methods); });
+      return line.step(), true;
+    }, part.farm);
+    out = flags.stream ? basin_summary_json(map) : to_json(map, r.methods);
   } else if (command == "integrate") {
     ProgressLine line("integrate", "steps", 0, show);
-    out = to_json(integrate(integrate_request_from_json(body, limits), [&](const StepRecord&) { return line.step(), true; }));
+    out = to_json(integrate(integrate_request_from_json(body, limits), [&](const StepRecord& step) {
+      record("step", [&] { return to_json(step); });
+      return line.step(), true;
+    }));
   } else if (command == "work-precision") {
     ProgressLine line("work-precision", "series", 0, show);
-    out = to_json(work_precision(work_precision_request_from_json(body, limits),
-                                 [&](const WorkPrecisionSeries&) { return line.step(), true; }));
+    out = to_json(work_precision(work_precision_request_from_json(body, limits), [&](const WorkPrecisionSeries& series) {
+      record("series", [&] { return to_json(series); });
+      return line.step(), true;
+    }));
   } else {
     render::Renderer renderer(1);
     const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, {});
     emit(std::string(picture.begin(), picture.end()), flags.out);
     return 0;
   }
-  if (part.prints)
-    emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
+  if (!part.prints) return 0;
+  if (flags.stream) record("result", [&] { return out; });
+  else if (flags.format != Format::json) emit(cli::format_rows(cli::result_rows(command, out), flags.format), flags.out);
+  else emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
   return 0;
 }
 

@@ -493,7 +493,7 @@ test('the work-precision chart has one series per ticked choice', async () => {
   const plotted = await page.evaluate(() => window.__lienewtonCharts?.['work-precision-chart']);
   wp.series.forEach((ser, i) => {
     const expected = ser.points.map((p, j) => ({ ...p, cpu_seconds: median(answers.map((a) => a.series[i].points[j].cpu_seconds)) }))
-      .filter((p) => p.cpu_seconds > 0 && p.error > 0).sort((a, b) => b.h - a.h).map((p) => p.cpu_seconds);
+      .filter((p) => p.cpu_seconds > 0 && p.global_error > 0).sort((a, b) => b.h - a.h).map((p) => p.cpu_seconds);
     assert.deepEqual(plotted.cpu[i], expected);
     assert.deepEqual(plotted.styles[i], { color: catalog.series_styles[i].color, marker: catalog.series_styles[i].marker });
   });

@@ -206,11 +206,11 @@ test('Speed from a URL: the work-precision curl command reproduces the errors ch
   const { rows, head, json } = await downloads(panel);
   const at = (r, k) => r[head.indexOf(k)];
   // Errors are deterministic: the same from the page's run and from curl's.
-  assert.deepEqual(rows.map((r) => number(at(r, 'error'))), wp.series.flatMap((s) => s.points.map((p) => p.error)));
+  assert.deepEqual(rows.map((r) => number(at(r, 'global_error'))), wp.series.flatMap((s) => s.points.map((p) => p.global_error)));
   // CPU times are the run's own: the chart plots exactly the downloaded ones.
   const { cpu } = (await charts())['work-precision-chart'];
   json.work_precision.series.forEach((s, i) => {
-    const sorted = s.points.filter((p) => p.cpu_seconds > 0 && p.error > 0).sort((a, b) => b.h - a.h).map((p) => p.cpu_seconds);
+    const sorted = s.points.filter((p) => p.cpu_seconds > 0 && p.global_error > 0).sort((a, b) => b.h - a.h).map((p) => p.cpu_seconds);
     assert.deepEqual(cpu[i], sorted);
   });
   assert.deepEqual(json.energy_runs.map((r) => r.result.global_error), energy.map((e) => e.global_error));

@@ -83,7 +83,7 @@ test('heavy-top: steps from its time scale, honest orders, grey points explained
   await page.locator('#work-precision-chart').scrollIntoViewIfNeeded();
   await page.screenshot({ path: join(shots, 'speed-heavy-top-1440x900-chart.png') });
   // A grey point (left out of the fit) says why on hover.
-  const excluded = wp.series.flatMap((s) => s.points).find((p) => !p.in_fit && p.error > 0);
+  const excluded = wp.series.flatMap((s) => s.points).find((p) => !p.in_fit && p.global_error > 0);
   if (excluded) assert.ok(excluded.excluded.length > 0);
   assert.deepEqual(consoleErrors, []);
 });

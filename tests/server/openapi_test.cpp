@@ -4,7 +4,12 @@
 #include <cmath>
 #include <set>
 
+#include "core/basins.hpp"
 #include "core/fields.hpp"
+#include "core/integrate.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
+#include "core/work_precision.hpp"
 #include "core/solvers/newton_step.hpp"
 #include "core/solvers/watchdog.hpp"
 #include "core/status.hpp"
@@ -226,6 +231,43 @@ TEST(OpenApi, RequestSchemasAreTheFieldTable) {
     for (const fields::Field& row : picture_fields())
       if (row.takes(route)) rows.insert(row.name);
     EXPECT_EQ(listed, rows) << name;
+  }
+}
+
+// A default the document states is what the codec leaves in the request when the field is absent.
+TEST(OpenApi, DefaultsAreWhatTheServerApplies) {
+  const json doc = json::parse(openapi_document(ServerOptions{}));
+  const json& schemas = doc["components"]["schemas"];
+  const auto stated = [&](const char* schema, const char* field) { return schemas[schema]["properties"][field]["default"]; };
+  const json none = json::object();
+  const Limits limits;
+  const SolveRequest solve = solve_request_from_json(none, limits);
+  EXPECT_EQ(stated("SolveRequest", "h"), solve.h);
+  EXPECT_EQ(stated("SolveRequest", "problem"), to_string(solve.problem.kind));
+  EXPECT_EQ(stated("SolveRequest", "method"), to_string(solve.solver.method));
+  EXPECT_EQ(stated("SolveRequest", "differential"), to_string(solve.solver.differential));
+  const SweepRequest sweep = sweep_request_from_json(none, limits);
+  EXPECT_EQ(stated("SweepRequest", "problem"), to_string(sweep.problem.kind));
+  EXPECT_EQ(stated("SweepRequest", "differential"), to_string(sweep.solver.differential));
+  const BasinRequest basins = basin_request_from_json(none, limits);
+  EXPECT_EQ(stated("BasinRequest", "h"), basins.solve.h);
+  EXPECT_EQ(stated("BasinRequest", "problem"), to_string(basins.solve.problem.kind));
+  EXPECT_EQ(stated("BasinRequest", "differential"), to_string(basins.solve.solver.differential));
+  const IntegrateRequest integrate = integrate_request_from_json(none, limits);
+  EXPECT_EQ(stated("IntegrateRequest", "problem"), to_string(integrate.problem.kind));
+  EXPECT_EQ(stated("IntegrateRequest", "method"), to_string(integrate.solver.method));
+  EXPECT_EQ(stated("IntegrateRequest", "integrator"), to_string(integrate.integrator));
+  EXPECT_FALSE(schemas["IntegrateRequest"]["properties"]["h"].contains("default"));  // from the field's time scale
+  const WorkPrecisionRequest wp = work_precision_request_from_json(none, limits);
+  EXPECT_EQ(stated("WorkPrecisionRequest", "problem"), to_string(wp.problem.kind));
+  EXPECT_EQ(stated("WorkPrecisionChoice", "integrator"), to_string(WorkPrecisionChoice{}.integrator));
+  // Every stream's records are told apart by type, each named in the mapping.
+  for (const char* stream : {"SolveStreamRecord", "SweepStreamRecord", "BasinStreamRecord", "IntegrateStreamRecord",
+                             "WorkPrecisionStreamRecord"}) {
+    const json& s = schemas[stream];
+    EXPECT_EQ(s["discriminator"]["propertyName"], "type") << stream;
+    EXPECT_EQ(s["oneOf"].size(), s["discriminator"]["mapping"].size()) << stream;
+    EXPECT_TRUE(s["discriminator"]["mapping"].contains("error")) << stream;
   }
 }
 

@@ -188,7 +188,7 @@ export function createSpeedPanel(root) {
 }
 
 // One CSV row per point of the work-precision diagram: its choice, h, and what it cost and reached.
-const POINT_COLUMNS = ['integrator', 'method', 'differential', 'h', 'error', 'cpu_seconds', 'iterations'];
+const POINT_COLUMNS = ['integrator', 'method', 'differential', 'h', 'global_error', 'cpu_seconds', 'iterations'];
 
 // One run for the trajectory's stepper: the render request (the same frames as the integration, which ran with
 // FRAMES) and per slider position the step and time the server reports for that frame (frame_steps,

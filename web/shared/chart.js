@@ -178,8 +178,8 @@ function nearest(u) {
 // marker shows its h, CPU time, error and iterations in `hover`. uPlot's mode 2: every series has its own xs.
 export function workPrecisionChart(container, runs, hover) {
   const tables = runs.map((r) => {
-    const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.error)).sort((a, b) => b.h - a.h);
-    return { pts, xy: [pts.map((p) => p.error), pts.map((p) => p.cpu_seconds)] };
+    const pts = r.points.filter((p) => positive(p.cpu_seconds) && positive(p.global_error)).sort((a, b) => b.h - a.h);
+    return { pts, xy: [pts.map((p) => p.global_error), pts.map((p) => p.cpu_seconds)] };
   });
   const all = (k) => tables.flatMap((t) => t.xy[k]);
   const xr = decades(null, Math.min(...all(0)), Math.max(...all(0)));
@@ -199,7 +199,7 @@ export function workPrecisionChart(container, runs, hover) {
     const p = tables[i - 1].pts[k];
     const cpu = p.cpu_runs ? `median ${spreadText(p.cpu_runs)} of ${p.cpu_runs.length} runs` : fmtSeconds(p.cpu_seconds);
     hover.textContent = `${runs[i - 1].label}: h = ${fmtH(p.h)}, solver CPU time ${cpu}, ` +
-      `global error ${fmtExp(p.error)}, ${p.iterations} iterations` +
+      `global error ${fmtExp(p.global_error)}, ${p.iterations} iterations` +
       (p.in_fit === false && p.excluded ? `; not in the fit: ${p.excluded}` : '');
     hover.dataset.h = String(p.h);
   };
