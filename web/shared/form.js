@@ -91,7 +91,8 @@ export function runner(form, live) {
     form.setAttribute('aria-busy', 'true');
     // Once a run starts, a phone shows the output above the form (style.css, .ran): bring it into view.
     form.parentElement.classList.add('ran');
-    if (matchMedia('(max-width: 820px)').matches) form.nextElementSibling?.scrollIntoView({ block: 'start' });
+    // Not for a live run (shared/live.js): the slider that started it stays where the thumb is.
+    if (matchMedia('(max-width: 820px)').matches && !form.dataset.live) form.nextElementSibling?.scrollIntoView({ block: 'start' });
     try {
       await task(mine.signal, progress);
       return true;
