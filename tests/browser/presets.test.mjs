@@ -187,6 +187,56 @@ test('every chart saves as PNG and SVG', async () => {
   assert.deepEqual(errors, []);
 });
 
+test('a program on SE(3) with a wrong line gets an error marker at the line the server reports', async () => {
+  await page.goto(`${base}/#solve`);
+  const panel = page.locator('#solve');
+  await panel.locator('details.folded', { hasText: 'Your own g' }).locator('summary').click();
+  await panel.getByLabel('Group of your g').selectOption('SE');
+  // Line 3 builds a 3 x 3 g where SE(3)'s y is 4 x 4.
+  const program = "R = y(1:3,1:3);\nw = R' * [0; 0; 1];\ng = [0 -w(3) w(2); w(3) 0 -w(1); -w(2) w(1) 0]";
+  await panel.locator('textarea[name="g"]').fill(program);
+  // The gutter numbers every line.
+  assert.deepEqual((await panel.locator('.code-gutter .line').allInnerTexts()).slice(0, 3).map((t) => t.trim()), ['1', '2', '3']);
+  const answered = page.waitForResponse((r) => r.url().endsWith('/api/v1/solve'));
+  await panel.getByRole('button', { name: 'Run' }).click();
+  const { error } = await (await answered).json();
+  assert.equal(error.field, 'g');
+  assert.equal(error.line, 3);
+  await panel.locator('.code-editor[data-error-line="3"]').waitFor();
+  assert.deepEqual(await panel.locator('.code-gutter .line.error').allInnerTexts(), ['3']);
+  assert.match(await panel.locator('[data-field="g"] .field-error').innerText(), /^line 3, column \d+: /);
+  // The caret is on the reported line and column.
+  const caret = await panel.locator('textarea[name="g"]').evaluate((t) => t.selectionStart);
+  assert.equal(caret, program.split('\n').slice(0, 2).join('\n').length + 1 + error.column - 1);
+  await shot(page, 'solve-program-error');
+  // Typing clears the marker.
+  await panel.locator('textarea[name="g"]').press('End');
+  await panel.locator('textarea[name="g"]').press('Space');
+  assert.equal(await panel.locator('.code-gutter .line.error').count(), 0);
+});
+
+test('the heavy top and the stiff body can be edited as programs on SO(3)xR^3, and solve', async () => {
+  errors.length = 0;  // the 422 of the test before is the page's console error, rightly
+  for (const problem of ['heavy-top', 'stiff-body']) {
+    await page.goto(`${base}/?problem=${problem}#solve`);
+    const panel = page.locator('#solve');
+    await panel.locator('details.folded', { hasText: 'Your own g' }).locator('summary').click();
+    await panel.getByRole('button', { name: 'Edit the problem as a program' }).click();
+    assert.ok((await panel.locator('textarea[name="g"]').inputValue()).length > 50, `${problem}: a program`);
+    assert.equal(await panel.getByLabel('Group of your g').inputValue(), 'SOxR');
+    const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/solve'));
+    await panel.getByRole('button', { name: 'Run' }).click();
+    const body = JSON.parse((await sent).postData());
+    assert.equal(body.group, 'SOxR');
+    assert.ok(body.g && body.parameters, `${problem}: g and its parameters sent`);
+    await panel.locator('#solve-result [data-result="status"] .badge').waitFor();
+    assert.equal(await panel.locator('#solve-result [data-result="status"] .badge').getAttribute('data-status'), 'converged');
+    // The rotation frames of the iterates draw too (a GET whose g has commas).
+    await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.naturalWidth > 0);
+  }
+  assert.deepEqual(errors, []);
+});
+
 async function shot(p, name) {
   const size = p.viewportSize();
   await p.screenshot({ path: join(shots, `${name}-${size.width}x${size.height}.png`) });

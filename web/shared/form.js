@@ -53,6 +53,8 @@ export function showError(form, err) {
     const fold = wrapper.closest('details.folded');
     if (fold) fold.open = true;
     wrapper.querySelector('.field-error').textContent = err.message;
+    // A program's fault: the editor flags the line (shared/code_editor.js listens).
+    if (Number.isInteger(err.line)) wrapper.dispatchEvent(new CustomEvent('program-error', { detail: { line: err.line, column: err.column } }));
     const input = own ?? wrapper.querySelector('input[name], select[name]');
     if (input) {
       input.setAttribute('aria-invalid', 'true');
