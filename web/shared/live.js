@@ -1,6 +1,6 @@
 // A panel's result kept honest and, where it is cheap, live. Every panel's form is watched the same way, from
 // outside the panel: the runner (form.js) marks a run with aria-busy, so its length and end are seen here.
-// - A cheap panel (its last run took under CHEAP_MS, click to result) runs again as a slider, select or number
+// - A cheap panel (its last run took under CHEAP_MS, click to result) runs again as a slider or a number box
 //   moves, a moment after the last move: the chart follows h.
 // - Otherwise a result whose settings changed since its run is marked stale (dimmed, a note saying so) until Run.
 // - fresh() says whether the panel shows the result of its form as it is: the page's address then asks for it
@@ -42,7 +42,8 @@ export function liveResult(form, output, onChange = () => {}) {
   const changed = (e) => {
     if (!hasResult) return;
     const control = e.target;
-    const movable = control.type === 'range' || control.type === 'number' || control.tagName === 'SELECT';
+    // A slider or a number box: a step of the same run. A select (another problem, method) may cost far more.
+    const movable = control.type === 'range' || control.type === 'number' || control.dataset.type === 'number';
     if (movable && lastMs < CHEAP_MS) {
       clearTimeout(timer);
       timer = setTimeout(() => {
