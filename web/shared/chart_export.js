@@ -38,10 +38,12 @@ export function chartSvg(u) {
     `<defs><clipPath id="plot"><rect x="${num(left)}" y="${num(top)}" width="${num(w)}" height="${num(h)}"/></clipPath></defs>`,
     `<rect x="${num(left)}" y="${num(top)}" width="${num(w)}" height="${num(h)}" fill="none" stroke="${esc(fg)}" stroke-opacity="0.4"/>`];
   // Axes: the ticks and labels uPlot drew (its splits and their texts), a grid line at each tick.
-  u.axes.forEach((axis) => {
+  u.axes.forEach((axis, k) => {
     if (axis.show === false) return;
     const vertical = axis.side % 2 === 1;
-    const splits = axis._splits ?? [];
+    // The ticks the canvas shows: its axis filter (whole decades on a long log axis) applied to the splits.
+    const raw = axis._splits ?? [];
+    const splits = typeof axis.filter === 'function' ? axis.filter(u, raw, k, axis._space, axis._incr) : raw;
     const values = axis._values ?? [];
     splits.forEach((v, j) => {
       if (v == null) return;
