@@ -210,7 +210,8 @@ std::vector<Field> build() {
   t.push_back(Field{.name = "parameters", .type = Type::object, .routes = kProblemRoutes,
                     .lands = {&ProblemSpec::parameters},
                     .description = "with g: named numbers and matrices the program reads, e.g. {\"J\": [[1,0,0],"
-                                   "[0,2,0],[0,0,3]]} (a number, an array: a row, an array of rows: a matrix)"});
+                                   "[0,2,0],[0,0,3]]} (a number, an array: a row, an array of rows: a matrix, a string: an expression of "
+                                   "constants in g's notation, e.g. \"pi/4\" or \"0.1*eye(3)\")"});
   t.push_back(Field{.name = "group", .type = Type::string, .routes = kProblemRoutes, .lands = {&ProblemSpec::group},
                     .description = "the Lie group by its registered name; n is its index, as in SO(n). SO: SO(n), n x n "
                                    "orthogonal z; SE: SE(3) (n = 3), z the 4 x 4 [[R, p], [0, 1]], algebra coordinates "

@@ -20,7 +20,7 @@ constexpr int kSwatch = 12;
 constexpr int kMaxRootEntries = 12;  // legend entries for roots; the rest are summed up in one line
 constexpr Color kAxisColor{90, 90, 90, 255};
 
-// Blues, greens, purples and yellows: the failure colours are reds, oranges, pinks, browns, greys and a pale cyan.
+// Blues, greens, purples and yellows: the failure colours are reds, oranges, pinks, browns and greys.
 constexpr Color kRootPalette[] = {{31, 119, 180, 255}, {44, 160, 44, 255},  {148, 103, 189, 255}, {188, 189, 34, 255},
                                   {23, 190, 207, 255}, {255, 217, 47, 255}, {102, 102, 255, 255}, {27, 120, 80, 255},
                                   {90, 60, 160, 255},  {150, 210, 90, 255}};

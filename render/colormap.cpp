@@ -29,19 +29,22 @@ Color viridis(double t) {
 Color status_color(Status status) {
   switch (status) {
     case Status::converged: return kNoValueColor;  // not a failure; callers color it by the metric
+    // Warm hues and greys only: viridis runs purple-blue-green-yellow, so none of these reads as an iteration
+    // count (tests/render/colormap_test.cpp keeps each at least a CIELAB distance of 25 from every viridis shade).
     case Status::max_iterations: return {215, 48, 39, 255};        // red
-    case Status::diverged: return {40, 40, 40, 255};               // near black
+    case Status::diverged: return {20, 20, 20, 255};               // black
     case Status::non_finite: return {231, 41, 138, 255};           // magenta
     case Status::left_log_domain: return {253, 141, 60, 255};      // orange
     case Status::singular_differential: return {140, 86, 75, 255}; // brown
-    case Status::stagnated: return {158, 218, 229, 255};           // pale cyan
+    case Status::stagnated: return {200, 170, 130, 255};           // tan
     case Status::off_branch: return {247, 182, 210, 255};          // pink
-    case Status::local_minimum: return {188, 189, 34, 255};        // olive
-    case Status::no_descent: return {107, 110, 207, 255};          // slate blue
-    case Status::fold: return {255, 217, 47, 255};                 // yellow
-    case Status::cancelled: return {120, 120, 120, 255};           // mid gray: not computed
-    case Status::min_step: return {31, 120, 180, 255};             // blue
-    case Status::max_steps: return {178, 223, 138, 255};           // light green
+    case Status::local_minimum: return {128, 0, 38, 255};          // maroon
+    case Status::no_descent: return {255, 120, 120, 255};          // coral
+    case Status::fold: return {102, 37, 6, 255};                   // dark rust
+    case Status::cancelled: return {150, 150, 150, 255};           // mid gray: not computed
+    // Integration statuses: never in a solve's map, so they may share greys with the map's own.
+    case Status::min_step: return {95, 95, 95, 255};               // dark gray
+    case Status::max_steps: return {225, 225, 225, 255};           // light gray
   }
   return kNoValueColor;
 }

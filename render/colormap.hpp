@@ -10,7 +10,8 @@ namespace lienewton::render {
 // Viridis (matplotlib's perceptually uniform map) at t in [0, 1], clamped; NaN gives t = 0.
 Color viridis(double t);
 
-// A flat color per Status other than converged, chosen to lie outside viridis' purple-blue-green-yellow.
+// A flat color per Status other than converged, chosen to lie outside viridis' purple-blue-green-yellow
+// (reds, oranges, browns, pinks, greys), so that no failure reads as a converged cell's metric.
 Color status_color(Status status);
 
 // Converged cells whose metric has no value (a rate needs three residuals).

@@ -3,6 +3,7 @@
 #include "core/fields.hpp"
 #include "core/group_registry.hpp"
 #include "core/problems.hpp"
+#include "core/user_field/program.hpp"
 #include "core/validation.hpp"
 
 #include <algorithm>
@@ -242,7 +243,12 @@ user_field::Parameters read_value(const json& v, const fields::Field&, const std
   user_field::Parameters out;
   for (const auto& [name, x] : v.items()) {
     const std::string at = path + "." + name;
-    const std::string message = at + " must be a finite number, an array of them or an array of equal-length rows";
+    const std::string message = at + " must be a finite number, an array of them, an array of equal-length rows "
+                                     "or an expression of constants as text (\"pi/4\", \"0.1*eye(3)\")";
+    if (x.is_string()) {  // the core evaluates it (422 naming the parameter, with its line and column)
+      out[name] = user_field::constant_value(x.get_ref<const std::string&>(), at);
+      continue;
+    }
     if (x.is_number()) {
       out[name] = Eigen::MatrixXd::Constant(1, 1, read_number(x, at, message));
       continue;

@@ -20,6 +20,14 @@ json scalar(const std::string& text) {
   return text;
 }
 
+// A text field (the program g): its value is the text as typed, commas, brackets and all. Split at its commas, a
+// program such as "R = y(1:3,1:3); ..." became a list and was refused as "g must be a string".
+bool text_field(const std::string& key) {
+  for (const fields::Field& f : fields::request_fields())
+    if (f.name == key && f.type == fields::Type::string && !f.array) return true;
+  return false;
+}
+
 }  // namespace
 
 std::set<std::string> list_fields(fields::Routes routes) {
@@ -34,7 +42,9 @@ json query_to_json(const std::multimap<std::string, std::string>& params, const 
   json out = json::object();
   for (const auto& [key, value] : params) {
     if (out.contains(key)) throw FieldError("duplicate_field", key, "duplicate parameter " + key);
-    if (!value.empty() && (value[0] == '[' || value[0] == '{')) {
+    if (text_field(key)) {
+      out[key] = value;
+    } else if (!value.empty() && (value[0] == '[' || value[0] == '{')) {
       try {
         out[key] = parse_body(value);
       } catch (const FieldError&) {

@@ -7,6 +7,9 @@ import { createMotionPanel } from './panels/motion.js';
 import { createSolvePanel } from './panels/solve.js';
 import { createSpeedPanel } from './panels/speed.js';
 import { createStabilityPanel } from './panels/stability.js';
+import { el } from './shared/dom.js';
+import { liveResult } from './shared/live.js';
+import { PRESETS, presetHref } from './shared/presets.js';
 
 const tabs = [...document.querySelectorAll('[role="tab"]')];
 
@@ -21,9 +24,12 @@ function select(tab, focus = true) {
   keepInUrl(tab.getAttribute('aria-controls'));
 }
 
-// The shown panel's settings that differ from its defaults, in the query string.
+// The shown panel's settings that differ from its defaults, in the query string; run=1 while the panel shows
+// the result of those settings, so that the address opens with it.
 function keepInUrl(id) {
-  const q = panels[id]?.share.params().toString() ?? '';
+  const params = panels[id]?.share.params() ?? new URLSearchParams();
+  if (results[id]?.fresh()) params.set('run', '1');
+  const q = params.toString();
   history.replaceState(null, '', `${location.pathname}${q ? `?${q}` : ''}#${id}`);
 }
 
@@ -56,10 +62,17 @@ const panels = {
   motion: createMotionPanel(body('motion')),
 };
 
+const results = Object.fromEntries(Object.keys(panels).map((id) => [id, liveResult(document.querySelector(`#${id} form`),
+  document.querySelector(`#${id} .output`), () => { if (!document.getElementById(id).hidden) keepInUrl(id); })]));
+
+document.querySelector('#presets ul').append(...PRESETS.map((p) => el('li', {},
+  el('a', { href: presetHref(p), dataset: { preset: p.id } }, p.title), ` \u2014 ${p.what}`)));
+
 const fromHash = () => tabs.find((t) => `#${t.getAttribute('aria-controls')}` === location.hash);
 // The settings in the address belong to the panel it names.
 const opened = fromHash() ?? tabs[0];
-panels[opened.getAttribute('aria-controls')].share.apply(new URLSearchParams(location.search));
+const openedQuery = new URLSearchParams(location.search);
+panels[opened.getAttribute('aria-controls')].share.apply(openedQuery);
 for (const id of Object.keys(panels)) {
   const form = document.querySelector(`#${id} form`);
   const follow = () => { if (!document.getElementById(id).hidden) keepInUrl(id); };
@@ -76,6 +89,8 @@ function toTop() {
   document.body.removeAttribute('tabindex');
 }
 toTop();
+// An address that asks for its result (a preset, a copied link of a result) runs once, as Run would.
+if (openedQuery.get('run') === '1') document.querySelector(`#${opened.getAttribute('aria-controls')} form`).requestSubmit();
 window.addEventListener('hashchange', () => {
   const t = fromHash();
   if (t) { select(t, false); toTop(); }

@@ -449,6 +449,20 @@ class Compiler {
     for (const auto& [name, value] : parameters) names_[name] = constant(value);
   }
 
+  // The value of a program that reads no y and no t: its last statement's (or g's), folded when compiled.
+  MatrixXd constant_result() {
+    int result = -1, result_statement = -1;
+    for (int st : s_.statements) {
+      const Node& nd = node(st);
+      result = expr(nd.kind == NodeKind::assign ? nd.kids[0] : st);
+      result_statement = st;
+      if (nd.kind == NodeKind::assign) names_[nd.text] = result;
+    }
+    if (result < 0) fail_at(1, 1, "the value is empty: write a number, a matrix or an expression of them");
+    if (!fixed(result)) fail(result_statement, "a parameter is a constant: its value cannot read y or t");
+    return value(result);
+  }
+
   std::shared_ptr<const Program> run() {
     int result = -1, result_statement = -1;
     bool assigned_g = false;
@@ -978,6 +992,15 @@ std::shared_ptr<const Program> compile(std::string_view source, int n, const Par
   if (n < 1) fail_at(1, 1, "n must be positive");
   const Syntax syntax = parse(source);
   return Compiler(syntax, n, parameters).run();
+}
+
+Eigen::MatrixXd constant_value(std::string_view text, const std::string& field) {
+  try {
+    return Compiler(parse(text), 1, {}).constant_result();
+  } catch (const RequestError& e) {
+    if (e.field() != "g") throw;
+    throw RequestError(RequestError::Kind::unprocessable, field, field + ": " + e.what(), e.line(), e.column());
+  }
 }
 
 void check_parameter(const std::string& name, const Eigen::MatrixXd& value) {

@@ -37,6 +37,11 @@ class Program;
 // (unprocessable, field "g", with the line and column of the fault) on a parse, size or limit error.
 std::shared_ptr<const Program> compile(std::string_view source, int n, const Parameters& parameters);
 
+// A parameter's value written as an expression of constants in the program's language ("pi/4", "1/3",
+// "0.1*eye(3)", "[1 2; 3 4]'"): evaluated once, as a program's own constants are. It reads no y, t or other
+// parameter. Throws RequestError (unprocessable, `field`, with the line and column in the text) otherwise.
+Eigen::MatrixXd constant_value(std::string_view text, const std::string& field);
+
 // Checks a parameter's name and value (a MATLAB identifier, finite entries, within the size limits); throws
 // RequestError naming parameters.<name>.
 void check_parameter(const std::string& name, const Eigen::MatrixXd& value);

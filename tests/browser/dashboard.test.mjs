@@ -300,7 +300,8 @@ test('Your g(y): a built-in fills the editor as a program, a fault shows its lin
   await panel.getByRole('button', { name: 'Run' }).click();
   const parameterError = panel.locator('.field[data-field="parameters"] .field-error');
   await parameterError.filter({ hasText: /\S/ }).waitFor();
-  assert.match(await parameterError.innerText(), /^parameters\.k must be/);
+  // Text is read as an expression of constants: the server names the parameter and the place in its text.
+  assert.match(await parameterError.innerText(), /^line 1, column \d+: parameters\.k: /);
   await shot('solve-parameters', false);
   await panel.getByRole('button', { name: 'Remove this parameter' }).last().click();
   assert.deepEqual(Object.keys(JSON.parse(await inAddress('parameters'))), ['J', 'm']);
@@ -324,6 +325,7 @@ test('compare draws one residual curve per ticked method', async () => {
   await panel.locator('#compare-table tbody tr').nth(ticked - 1).waitFor();
   const wall = (Date.now() - clicked) / 1e3;
   console.log(`compare defaults: ${(wall * 1e3).toFixed(0)} ms wall time from click to complete (page and browser included)`);
+  await panel.locator('#compare-noise').waitFor();  // the repeated timings: the chart is then scaled to their medians
   assert.equal(await page.locator('#compare-chart').getAttribute('data-series'), String(ticked));
   // Speed vs accuracy of the solvers: one line per run, x = the trace's cpu_seconds, and the time to tol.
   assert.equal(await page.locator('#compare-time-chart').getAttribute('data-series'), String(ticked));
@@ -343,13 +345,16 @@ test('compare draws one residual curve per ticked method', async () => {
   const rounding = (t) => 0.5 * 10 ** -(t.split(' ')[0].split('.')[1] ?? '').length * unit(t);  // half the last digit
   const totals = await panel.locator('#compare-table td[data-col="cpu-seconds"]').allInnerTexts();
   const total = totals.map(seconds);
+  // The chart shows each trace scaled to its run's median of the repeats (not the first, noisy run): it ends
+  // there, and the time to tol is read off it.
   const { tables } = await page.evaluate(() => window.__lienewtonCharts['compare-time-chart']);
+  const medians = (await panel.locator('#compare-table td[data-col="cpu-median"]').allInnerTexts()).map((m) => m.split(' (')[0]);
   const tolX = tables.map(([xs, ys]) => xs[ys.findIndex((y) => y <= 1e-13)]);
   ttol.forEach((t, i) => {
     assert.ok(total[i] > 0, `run ${i}: solver CPU time ${total[i]}`);
-    assert.ok(total[i] + rounding(totals[i]) >= tables[i][0].at(-1), `run ${i}: total ${totals[i]} before its last iterate`);
+    assert.ok(Math.abs(seconds(medians[i]) - tables[i][0].at(-1)) <= rounding(medians[i]) * 1.0001, `run ${i}: median ${medians[i]} vs its last iterate`);
     if (t === 'not reached') return;
-    assert.ok(seconds(t) <= total[i] + rounding(t) + rounding(totals[i]), `run ${i}: time to tol ${t} after the total ${totals[i]}`);
+    assert.ok(seconds(t) <= seconds(medians[i]) + rounding(t) + rounding(medians[i]), `run ${i}: time to tol ${t} after the median ${medians[i]}`);
     assert.ok(Math.abs(seconds(t) - tolX[i]) <= rounding(t) * 1.0001, `run ${i}: ${t} vs the chart's ${tolX[i]} s`);
   });
   assert.ok(total.reduce((a, b) => a + b, 0) < wall, `solver CPU ${total} s in ${wall} s of wall time`);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -423,6 +424,28 @@ TEST(UserField, KeptValuesAreThoseOfTheSameYAndTime) {
   reciprocal->eval(y0, 0, g_minus);
   EXPECT_EQ(g_plus(0, 1), std::numeric_limits<double>::infinity());
   EXPECT_EQ(g_minus(0, 1), -std::numeric_limits<double>::infinity());
+}
+
+// A parameter may be written as an expression of constants: evaluated once, exactly as the program's constants.
+TEST(UserField, ParameterExpressionsOfConstants) {
+  EXPECT_DOUBLE_EQ(user_field::constant_value("pi/4", "parameters.a")(0, 0), std::numbers::pi / 4);
+  EXPECT_DOUBLE_EQ(user_field::constant_value("1/3", "parameters.a")(0, 0), 1.0 / 3.0);
+  const Eigen::MatrixXd j = user_field::constant_value("0.1*eye(3)", "parameters.J");
+  EXPECT_EQ(j, Eigen::MatrixXd(0.1 * Eigen::MatrixXd::Identity(3, 3)));
+  EXPECT_EQ(user_field::constant_value("[1 2; 3 4]'", "parameters.M"), (Eigen::MatrixXd{{1, 3}, {2, 4}}));
+  EXPECT_EQ(user_field::constant_value("c = cos(pi); [c; 2*c]", "parameters.v"), (Eigen::MatrixXd{{-1}, {-2}}));
+  // It reads no y or t, and a fault names the parameter with its line and column.
+  for (const char* bad : {"y(1,1)", "2*t", "1 +", "", "undefined_name"}) {
+    try {
+      user_field::constant_value(bad, "parameters.k");
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.field(), "parameters.k") << bad;
+      EXPECT_EQ(e.kind(), RequestError::Kind::unprocessable) << bad;
+      EXPECT_GE(e.line(), 1) << bad;
+      EXPECT_EQ(std::string(e.what()).rfind("parameters.k: ", 0), 0u) << e.what();
+    }
+  }
 }
 
 }  // namespace

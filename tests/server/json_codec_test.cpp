@@ -355,6 +355,11 @@ TEST(QueryParams, MirrorJsonFields) {
   EXPECT_EQ(failure_of([&] { query_to_json(twice); }).code, "duplicate_field");
   const std::multimap<std::string, std::string> broken{{"z", "[[1,0"}};
   EXPECT_EQ(failure_of([&] { query_to_json(broken); }).field, "z");
+  // A program is text: its commas and brackets are its own (a GET of render/frames with such a g was refused).
+  const std::string program = "R = y(1:3,1:3); w = y(4:6,7);\ng = [R zeros(3,4); zeros(4,7)]";
+  const json text = query_to_json({{"g", program}, {"group", "SOxR"}});
+  EXPECT_EQ(text["g"], program);
+  EXPECT_EQ(query_to_json({{"g", "[1 2; 3 4]"}})["g"], "[1 2; 3 4]");
 }
 
 }  // namespace

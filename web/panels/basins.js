@@ -62,7 +62,9 @@ export function createBasinsPanel(root, { openSolve }) {
       json: { request: last.request, grid: { a: last.axis, z: last.z, b1: last.b1, b2: last.b2 }, rows: last.rows,
         roots: last.result.roots, methods: last.result.methods } },
   });
-  const output = el('div', { class: 'output' }, live, el('div', { class: 'map-area' }, maps, details), legend,
+  // The key right under the canvases (above them on a phone), not after the pixel's card.
+  const output = el('div', { class: 'output' }, live,
+    el('div', { class: 'map-area' }, el('div', { class: 'map-column' }, maps, legend), details),
     share.element, el('details', { class: 'view', id: 'basins-png' },
       el('summary', {}, 'As the server\u2019s PNG (for a slide or a paper)'), image));
   root.append(form, output);

@@ -67,7 +67,8 @@ export function createGrid({ method, ns, hs, onShow, onOpen }) {
     if (!c || !data.has(c)) return;
     const firstTap = e.pointerType === 'touch' && !wasCurrent;
     move(c);
-    if (!firstTap) onOpen(data.get(c));
+    if (firstTap) onShow(data.get(c), true);  // the card, brought into view
+    else onOpen(data.get(c));
   });
 
   return {

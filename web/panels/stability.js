@@ -66,7 +66,9 @@ export function createStabilityPanel(root, { openSolve }) {
     data: () => last?.done && { name: 'stability-map', columns: CELL_COLUMNS,
       rows: last.cells.map((c) => CELL_COLUMNS.map((k) => c[k] ?? null)), json: { request: last.request, cells: last.cells } },
   });
-  const output = el('div', { class: 'output' }, live, caption, el('div', { class: 'map-area' }, maps, details), legend,
+  // The key sits right under the grids (beside them the cell's card), so that on a phone it is in view with them.
+  const output = el('div', { class: 'output' }, live, caption,
+    el('div', { class: 'map-area' }, el('div', { class: 'map-column' }, maps, legend), details),
     share.element, tablesFold, imageFold);
   root.append(form, output);
 
@@ -191,7 +193,7 @@ export function createStabilityPanel(root, { openSolve }) {
     renderImage(resized.signal, width).catch(() => { /* the picture at the old width stays */ });
   });
 
-  function show(cell) {
+  function show(cell, reveal = false) {
     const row = (key, term, v) => [el('dt', {}, term), el('dd', { dataset: { detail: key } }, v)];
     details.replaceChildren(el('h3', {}, 'Cell'), el('dl', { class: 'summary' },
       row('method', 'Method', label(METHODS, cell.method)), row('n', 'N', String(cell.n)), row('h', 'h', fmtH(cell.h)),
@@ -199,6 +201,8 @@ export function createStabilityPanel(root, { openSolve }) {
       row('iterations', 'Iterations', String(cell.iterations)), row('rate', 'Rate r', fmtRate(cell.rate)),
       row('residual', 'Final \u2016f\u2016', fmtExp(cell.residual))),
     el('button', { type: 'button', onclick: () => openCell(cell) }, 'Open in Solve'));
+    // On a phone the card is under the grids: a tapped cell brings it into view (not on hover, which would jump).
+    if (reveal) details.scrollIntoView({ block: 'nearest' });
   }
 
   function openCell(cell) {
@@ -314,14 +318,15 @@ function drawLegend(box, cells, scale, metric, total) {
       `Rates outside 0\u20133 are clamped to the ends and marked with a dot (${outliers}).`)] : []),
     ...(beyond ? [el('p', { class: 'hint', dataset: { legend: 'beyond' } },
       `Beyond the scale fixed before the run, drawn at its ends (${beyond}).`)] : []),
+    // Only what the grids show: a key of every status, most of them "(0)", reads as a list of things to look for.
     el('ul', { class: 'swatches' },
-      el('li', { class: noValue ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${NO_VALUE}` }),
-        `converged, no ${label(METRICS, metric).toLowerCase()} (${noValue})`),
-      Object.entries(STATUSES).filter(([s]) => s !== 'converged').map(([s, info]) =>
-      el('li', { class: counts[s] ? '' : 'absent' }, el('span', { class: 'swatch', style: `background:${info.color}` }),
-        `${info.text} (${counts[s] ?? 0})`)),
-      el('li', { class: missing ? '' : 'absent', dataset: { legend: 'missing' } },
-        el('span', { class: 'swatch pending' }), `not reached: the run was cancelled or stopped first (${missing})`)));
+      noValue ? el('li', { dataset: { legend: 'no-value' } }, el('span', { class: 'swatch', style: `background:${NO_VALUE}` }),
+        `converged, no ${label(METRICS, metric).toLowerCase()} (${noValue})`) : null,
+      Object.entries(STATUSES).filter(([s]) => s !== 'converged' && counts[s]).map(([s, info]) =>
+        el('li', { dataset: { status: s } }, el('span', { class: 'swatch', style: `background:${info.color}` }),
+          `${info.text} (${counts[s]})`)),
+      missing ? el('li', { dataset: { legend: 'missing' } },
+        el('span', { class: 'swatch pending' }), `not reached yet, or the run was cancelled or stopped first (${missing})`) : null));
 }
 
 // Where the legend's colour scale comes from (colormap.js, fixedScale).

@@ -15,7 +15,9 @@ function fromBody(status, body) {
   const e = body && body.error;
   if (e && typeof e.message === 'string') {
     const where = Number.isInteger(e.line) ? `line ${e.line}, column ${e.column}: ` : '';  // a program's fault
-    return new ApiError(where + e.message, { status, code: e.code, field: e.field });
+    const err = new ApiError(where + e.message, { status, code: e.code, field: e.field });
+    if (where) Object.assign(err, { line: e.line, column: e.column });  // for the editor's error marker
+    return err;
   }
   return new ApiError(`The server answered HTTP ${status}.`, { status });
 }

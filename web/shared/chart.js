@@ -4,6 +4,7 @@
 import uPlot from '../vendor/uPlot.esm.js';
 import { SERIES_STYLES, fmtExp, fmtH, fmtSeconds, superscript } from './labels.js';
 import { spreadText } from './repeats.js';
+import { exportBar } from './chart_export.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.
 function logAxisValues(u, splits, axisIdx) {
@@ -61,6 +62,10 @@ function mount(container, opts, data) {
   });
   observer.observe(container);
   mounted.set(container, { plot, observer });
+  // Save as PNG / SVG under the chart, once per container: it saves whichever chart the container shows.
+  if (!container.nextElementSibling?.classList.contains('chart-export')) {
+    container.after(exportBar(container, () => mounted.get(container).plot));
+  }
   return plot;
 }
 

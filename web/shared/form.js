@@ -53,6 +53,8 @@ export function showError(form, err) {
     const fold = wrapper.closest('details.folded');
     if (fold) fold.open = true;
     wrapper.querySelector('.field-error').textContent = err.message;
+    // A program's fault: the editor flags the line (shared/code_editor.js listens).
+    if (Number.isInteger(err.line)) wrapper.dispatchEvent(new CustomEvent('program-error', { detail: { line: err.line, column: err.column } }));
     const input = own ?? wrapper.querySelector('input[name], select[name]');
     if (input) {
       input.setAttribute('aria-invalid', 'true');
@@ -91,7 +93,8 @@ export function runner(form, live) {
     form.setAttribute('aria-busy', 'true');
     // Once a run starts, a phone shows the output above the form (style.css, .ran): bring it into view.
     form.parentElement.classList.add('ran');
-    if (matchMedia('(max-width: 820px)').matches) form.nextElementSibling?.scrollIntoView({ block: 'start' });
+    // Not for a live run (shared/live.js): the slider that started it stays where the thumb is.
+    if (matchMedia('(max-width: 820px)').matches && !form.dataset.live) form.nextElementSibling?.scrollIntoView({ block: 'start' });
     try {
       await task(mine.signal, progress);
       return true;

@@ -9,13 +9,13 @@ export function statusBadge(status) {
 
 // A <dl> whose <dd>s carry data-result=<field> so tests read what a person reads.
 export function resultList(result) {
-  const row = (key, term, value) => [el('dt', {}, term), el('dd', { dataset: { result: key } }, value)];
+  const row = (key, term, value, note = null) => [el('dt', {}, term), el('dd', { dataset: { result: key } }, value), note && el('dd', { class: 'note' }, note)];
   return el('dl', { class: 'summary' },
     row('status', 'Status', statusBadge(result.status)),
     row('reason', 'Why', mathText(result.reason || STATUSES[result.status]?.text)),
     row('branch', 'Which root', branchText(result)),
     row('iterations', 'Iterations', String(result.iterations)),
-    row('rate', 'Rate r', rateText(result)),
+    row('rate', 'Rate r', rateText(result), el('small', { class: 'hint', dataset: { explains: 'rate' } }, RATE_WORDS)),
     row('residual', 'Final \u2016f(y)\u2016', fmtExp(result.residual)),
     row('orthogonality_error', '\u2016y\u1d40y \u2212 I\u2016', fmtExp(result.orthogonality_error)),
     row('cpu_seconds', 'Solver CPU time', fmtSeconds(result.cpu_seconds)),
@@ -30,6 +30,12 @@ function branchText({ branch, found_by: foundBy, fold_h: foldH, multistart_start
   const fold = foldH !== undefined && foldH !== null ? `; z\u2019s branch folds at h = ${foldH.toPrecision(4)}` : '';
   return `${words[branch] ?? branch}${by}${fold}`;
 }
+
+// What r is: the paper's estimate (section 5) from the three residuals before the last, so it reads the order
+// where the iteration was before reaching rounding level (often well under 2 on a short quadratic run).
+export const RATE_WORDS = 'Rate r is the paper\u2019s \u00a75 estimate from three residuals before the last: '
+  + 'r = log(\u2016f(y\u209a\u208b\u2081)\u2016 / \u2016f(y\u209a\u208b\u2082)\u2016) / log(\u2016f(y\u209a\u208b\u2082)\u2016 / \u2016f(y\u209a\u208b\u2083)\u2016), p the iterations; '
+  + '1 is linear, 2 quadratic. It leaves out the last iterate (which may sit at rounding), so a short quadratic run can read well under 2.';
 
 // r needs three iterations; a longer run without one has no measurable rate (e.g. it never settled).
 function rateText({ rate, iterations }) {
