@@ -25,6 +25,7 @@
 #include "server/cli/paper_figures.hpp"
 #include "server/cli/progress_line.hpp"
 #include "server/render_requests.hpp"
+#include "server/request_runner.hpp"
 #ifdef LIENEWTON_MPI
 #include "server/cli/mpi_farm.hpp"
 #endif
@@ -258,29 +259,7 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
   const bool show = part.prints && !flags.quiet && isatty(STDERR_FILENO);
-  json out;
-  if (command == "solve") {
-    const SolveRequest r = solve_request_from_json(body, limits);
-    out = to_json(solve(r), r.solver.include_iterates);
-  } else if (command == "sweep") {
-    const SweepRequest r = sweep_request_from_json(body, limits);
-    const SweepRequest full = with_defaults(r);
-    ProgressLine line("sweep", "cells", r.shard ? 0 : full.methods.size() * full.n.size() * full.h.size(), show);
-    out = to_json(sweep(r, [&](const SweepCell&) { return line.step(), true; }, {}, part.farm));
-  } else if (command == "basins") {
-    const BasinRequest r = basin_request_from_json(body, limits);
-    ProgressLine line("basins", "rows", basin_shard_rows(r.size, r.shard).size(), show);
-    out = to_json(basins(r, [&](const BasinRow&, const std::vector<BasinRoot>&) { return line.step(), true; },
-                         part.farm),
-                  r.methods);
-  } else if (command == "integrate") {
-    ProgressLine line("integrate", "steps", 0, show);
-    out = to_json(integrate(integrate_request_from_json(body, limits), [&](const StepRecord&) { return line.step(), true; }));
-  } else if (command == "work-precision") {
-    ProgressLine line("work-precision", "series", 0, show);
-    out = to_json(work_precision(work_precision_request_from_json(body, limits),
-                                 [&](const WorkPrecisionSeries&) { return line.step(), true; }));
-  } else {
+  if (command == "render") {
     render::Renderer renderer(1);
     const RenderRequestFn draw = sub == "frames"           ? render_frames
                                  : sub == "basins"         ? render_basins
@@ -292,6 +271,11 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
     emit(std::string(picture.begin(), picture.end()), flags.out);
     return 0;
   }
+  std::optional<ProgressLine> line;
+  const RunHooks hooks{
+      [&](std::string_view unit, std::size_t total) { line.emplace(command, std::string(unit), total, show); },
+      [&] { line->step(); }, part.farm};
+  const json out = run_request(*command_from_string(command), body, limits, hooks);
   if (part.prints)
     emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
   return 0;
