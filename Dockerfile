@@ -11,8 +11,9 @@ WORKDIR /src
 COPY scripts/deps.sh scripts/packages-build.txt scripts/packages-test.txt scripts/
 RUN scripts/deps.sh build && rm -rf /var/lib/apt/lists/*
 COPY . .
-# No -march=native: the image must run on any x86-64 host, not only the build machine.
-RUN cmake -S . -B /build -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_NATIVE=OFF -DLIENEWTON_TESTS=OFF \
+# No -march=native: the image must run on any x86-64 host, not only the build machine. No Python module: the
+# image serves HTTP.
+RUN cmake -S . -B /build -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_NATIVE=OFF -DLIENEWTON_TESTS=OFF -DLIENEWTON_PYTHON=OFF \
       -DLIENEWTON_BENCH=OFF \
  && cmake --build /build -j"$(nproc)" --target lienewton lienewton-server
 

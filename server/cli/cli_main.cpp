@@ -26,6 +26,7 @@
 #include "server/cli/progress_line.hpp"
 #include "server/cli/table_output.hpp"
 #include "server/render_requests.hpp"
+#include "server/request_runner.hpp"
 #ifdef LIENEWTON_MPI
 #include "server/cli/mpi_farm.hpp"
 #endif
@@ -270,58 +271,26 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   if (body.is_object()) body.update(flags.fields);
   const Limits limits = Limits::unlimited();
   const bool show = part.prints && !flags.quiet && isatty(STDERR_FILENO);
-  // --stream: each record as the service's NDJSON stream sends it (made only when streaming).
-  const auto record = [&](std::string_view type, const auto& make) {
-    if (!flags.stream || !part.prints) return;
-    const std::string line = service::stream_line(type, make()) + "\n";
-    std::fwrite(line.data(), 1, line.size(), stdout);
-    std::fflush(stdout);
-  };
-  json out;
-  if (command == "solve") {
-    const SolveRequest r = solve_request_from_json(body, limits);
-    const bool iterates = r.solver.include_iterates;
-    out = to_json(solve(r, [&](const TraceRecord& t) {
-      record(t.path_point ? "path_point" : "iteration", [&] { return to_json(t, iterates); });
-      return true;
-    }), iterates);
-  } else if (command == "sweep") {
-    const SweepRequest r = sweep_request_from_json(body, limits);
-    const SweepRequest full = with_defaults(r);
-    ProgressLine line("sweep", "cells", r.shard ? 0 : full.methods.size() * full.n.size() * full.h.size(), show);
-    out = to_json(sweep(r, [&](const SweepCell& cell) {
-      record("cell", [&] { return to_json(cell); });
-      return line.step(), true;
-    }, {}, part.farm));
-  } else if (command == "basins") {
-    const BasinRequest r = basin_request_from_json(body, limits);
-    ProgressLine line("basins", "rows", basin_shard_rows(r.size, r.shard).size(), show);
-    record("grid", [&] { return to_json(basin_grid(r)); });
-    const BasinResult map = basins(r, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
-      record("row", [&] { return to_json(row, roots, r.methods); });
-      return line.step(), true;
-    }, part.farm);
-    out = flags.stream ? basin_summary_json(map) : to_json(map, r.methods);
-  } else if (command == "integrate") {
-    ProgressLine line("integrate", "steps", 0, show);
-    out = to_json(integrate(integrate_request_from_json(body, limits), [&](const StepRecord& step) {
-      record("step", [&] { return to_json(step); });
-      return line.step(), true;
-    }));
-  } else if (command == "work-precision") {
-    ProgressLine line("work-precision", "series", 0, show);
-    out = to_json(work_precision(work_precision_request_from_json(body, limits), [&](const WorkPrecisionSeries& series) {
-      record("series", [&] { return to_json(series); });
-      return line.step(), true;
-    }));
-  } else {
+  if (command == "render") {
     render::Renderer renderer(1);
     const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, {});
     emit(std::string(picture.begin(), picture.end()), flags.out);
     return 0;
   }
+  std::optional<ProgressLine> line;
+  RunHooks hooks{
+      [&](std::string_view unit, std::size_t total) { line.emplace(command, std::string(unit), total, show); },
+      [&] { line->step(); }, part.farm, {}};
+  // --stream: each record as the service's NDJSON stream sends it.
+  const auto write_record = [&](std::string_view type, const json& record) {
+    const std::string text = service::stream_line(type, record) + "\n";
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+  };
+  if (flags.stream && part.prints) hooks.record = write_record;
+  const json out = run_request(*command_from_string(command), body, limits, hooks);
   if (!part.prints) return 0;
-  if (flags.stream) record("result", [&] { return out; });
+  if (flags.stream) write_record("result", out);
   else if (flags.format != Format::json) emit(cli::format_rows(cli::result_rows(command, out), flags.format), flags.out);
   else emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
   return 0;
