@@ -1,6 +1,7 @@
 """`pip install .` builds the Python package lienewton (python/lienewton) with the repository's CMake: core, the JSON
 codec and the pybind11 module only (LIENEWTON_PYTHON_ONLY), Release, tuned for this CPU like the CLI (extra
-CMake arguments: LIENEWTON_CMAKE_ARGS). Debian 12: python3-dev python3-numpy python3-pybind11 python3-venv cmake
+CMake arguments: LIENEWTON_CMAKE_ARGS; LIENEWTON_CMAKE_BUILD_DIR: a configured build tree of this repository whose
+_lienewton target is built and installed instead, as the test suite does with its own). Debian 12: python3-dev python3-numpy python3-pybind11 python3-venv cmake
 (scripts/deps.sh build), then in a venv made with --system-site-packages:
     pip install --no-build-isolation --no-index .
 """
@@ -19,11 +20,13 @@ ROOT = Path(__file__).resolve().parent
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        build_dir = Path(self.build_temp).resolve() / "cmake"
-        configure = ["cmake", "-S", str(ROOT), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
-                     "-DLIENEWTON_PYTHON_ONLY=ON", f"-DPython3_EXECUTABLE={sys.executable}",
-                     *shlex.split(os.environ.get("LIENEWTON_CMAKE_ARGS", ""))]
-        subprocess.run(configure, check=True)
+        given = os.environ.get("LIENEWTON_CMAKE_BUILD_DIR")
+        build_dir = Path(given).resolve() if given else Path(self.build_temp).resolve() / "cmake"
+        if not given:
+            configure = ["cmake", "-S", str(ROOT), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
+                         "-DLIENEWTON_PYTHON_ONLY=ON", f"-DPython3_EXECUTABLE={sys.executable}",
+                         *shlex.split(os.environ.get("LIENEWTON_CMAKE_ARGS", ""))]
+            subprocess.run(configure, check=True)
         subprocess.run(["cmake", "--build", str(build_dir), "--target", "_lienewton", "-j", str(os.cpu_count() or 1)],
                        check=True)
         built = sorted((build_dir / "python" / "lienewton").glob("_lienewton*.so"))
