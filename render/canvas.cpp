@@ -86,4 +86,13 @@ void Canvas::text(std::string_view text, float x, float y, TextSize size, Color 
   }
 }
 
+void dashed_line(Canvas& canvas, Point a, Point b, float width, Color color, float dash, float gap) {
+  const float length = std::hypot(b.x - a.x, b.y - a.y);
+  for (float s = 0; s < length; s += dash + gap) {
+    const float e = std::min(s + dash, length);
+    canvas.line({a.x + (b.x - a.x) * s / length, a.y + (b.y - a.y) * s / length},
+                {a.x + (b.x - a.x) * e / length, a.y + (b.y - a.y) * e / length}, width, color);
+  }
+}
+
 }  // namespace lienewton::render

@@ -72,4 +72,7 @@ class Canvas {
   std::vector<GlyphQuad> glyphs_;  // scratch
 };
 
+// A dashed line from a to b: dashes of `dash` pixels with `gap` between them.
+void dashed_line(Canvas& canvas, Point a, Point b, float width, Color color, float dash = 7, float gap = 5);
+
 }  // namespace lienewton::render

@@ -31,16 +31,6 @@ void great_circle(Canvas& canvas, const Camera& camera, const Eigen::Vector3d& a
   }
 }
 
-void dashed(Canvas& canvas, Point a, Point b, float width, Color color) {
-  constexpr float kDash = 7, kGap = 5;
-  const float length = std::hypot(b.x - a.x, b.y - a.y);
-  for (float s = 0; s < length; s += kDash + kGap) {
-    const float e = std::min(s + kDash, length);
-    canvas.line({a.x + (b.x - a.x) * s / length, a.y + (b.y - a.y) * s / length},
-                {a.x + (b.x - a.x) * e / length, a.y + (b.y - a.y) * e / length}, width, color);
-  }
-}
-
 // The three axes of one frame, farthest first so that nearer axes cover it.
 std::array<int, 3> back_to_front(const Camera& camera, const Eigen::Matrix3d& frame) {
   std::array<int, 3> order{0, 1, 2};
@@ -55,7 +45,7 @@ void legend(Canvas& canvas, const char* start = "start z") {
   const float x = 10, line_height = 17;
   float y = canvas.scene_height() - 10 - 2 * line_height;
   const Color gray{110, 110, 110, 255};
-  dashed(canvas, {x, y}, {x + 24, y}, 2.0f, gray);
+  dashed_line(canvas, {x, y}, {x + 24, y}, 2.0f, gray);
   canvas.text(start, x + 32, y, TextSize::small, kTextColor);
   y += line_height;
   canvas.line({x, y}, {x + 24, y}, 1.5f, mix(gray, canvas.background(), 0.6));
@@ -98,7 +88,7 @@ void draw_frames(Canvas& canvas, const Camera& camera, const std::vector<Eigen::
   }
   // The start goes over the earlier frames: y_0 = z would otherwise hide it.
   for (int axis : back_to_front(camera, start)) {
-    dashed(canvas, origin, camera.project(start.col(axis)), 2.0f, kAxisColors[axis]);
+    dashed_line(canvas, origin, camera.project(start.col(axis)), 2.0f, kAxisColors[axis]);
   }
   if (count > 0) {
     const Eigen::Matrix3d& last = frames.back();
@@ -185,7 +175,7 @@ void draw_bodies(Canvas& canvas, const Camera& camera, const std::vector<std::ve
       canvas.line(line[j - 1], line[j], 1.5f, mix(gray, canvas.background(), 0.3 + 0.6 * age));
   }
   const std::vector<Point> first = chain(camera, fit, start);
-  for (std::size_t j = 1; j < first.size(); ++j) dashed(canvas, first[j - 1], first[j], 2.0f, gray);
+  for (std::size_t j = 1; j < first.size(); ++j) dashed_line(canvas, first[j - 1], first[j], 2.0f, gray);
   const std::vector<Point> line = chain(camera, fit, last);
   for (std::size_t j = 1; j < line.size(); ++j) canvas.line(line[j - 1], line[j], 2.5f, gray);
   // The last state's axes, farthest body first.

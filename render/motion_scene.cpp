@@ -61,16 +61,6 @@ void arrow(Canvas& canvas, Point from, Point to, float width, Color color) {
                   {to.x - head * ux + 0.5f * head * uy, to.y - head * uy - 0.5f * head * ux}, color);
 }
 
-void dashed(Canvas& canvas, Point a, Point b, float width, Color color) {
-  constexpr float kDash = 6, kGap = 5;
-  const float length = std::hypot(b.x - a.x, b.y - a.y);
-  for (float s = 0; s < length; s += kDash + kGap) {
-    const float e = std::min(s + kDash, length);
-    canvas.line({a.x + (b.x - a.x) * s / length, a.y + (b.y - a.y) * s / length},
-                {a.x + (b.x - a.x) * e / length, a.y + (b.y - a.y) * e / length}, width, color);
-  }
-}
-
 // The world's axes at the origin: x, y, z (z up), short and thin, labelled at their tips.
 void world_axes(Canvas& canvas, const Camera& camera, const Fit& f, double length) {
   const Point o = camera.project(f(Eigen::Vector3d::Zero()));
@@ -169,7 +159,7 @@ void draw_motion(Canvas& canvas, const Camera& camera, const Motion& m, std::siz
   if (m.gravity && m.gravity->norm() > 0) {
     // The vertical through the pivot, dashed across the scene, and gravity's arrow at the right.
     const Eigen::Vector3d down = z_up() * m.gravity->normalized();
-    dashed(canvas, camera.project(origin - 1.0 * down), camera.project(origin + 1.0 * down), 1.2f, kFaint);
+    dashed_line(canvas, camera.project(origin - 1.0 * down), camera.project(origin + 1.0 * down), 1.2f, kFaint);
     const Point top{float(canvas.width()) - 24, 40}, tip = {top.x + 40 * float(camera.right().dot(down)),
                                                             top.y - 40 * float(camera.up().dot(down))};
     arrow(canvas, top, tip, 2.0f, kGray);

@@ -108,15 +108,20 @@ TEST(MotionOfProblem, RigidBodyMomentumStaysOnItsSphereAndItsDrawnLevel) {
   EXPECT_LT((m.trace.front() - result.frames.front().transpose() * r.problem.rigid_body.momentum).norm(), 1e-15);
 }
 
-TEST(MotionOfProblem, HeavyTopTracesAPointFixedInTheBodyAtTheDiscsAxis) {
+IntegrateRequest heavy_top_run(double h, double t_end, int frames) {
   IntegrateRequest r;
   r.problem.kind = ProblemKind::heavy_top;
   r.problem.group = "SOxR";
   r.integrator = Integrator::rkmk_gauss2;
-  r.h = 1.0 / 2048;
-  r.t_end = 0.05;
-  r.frames = 20;
+  r.h = h;
+  r.t_end = t_end;
+  r.frames = frames;
   r.reference = false;
+  return r;
+}
+
+TEST(MotionOfProblem, HeavyTopTracesAPointFixedInTheBodyAtTheDiscsAxis) {
+  const IntegrateRequest r = heavy_top_run(1.0 / 2048, 0.05, 20);
   const IntegrateResult result = integrate(r);
   ASSERT_EQ(result.status, Status::converged) << result.reason;
   const Motion m = motion_of(r.problem, result.frames, result.frame_times);
@@ -141,14 +146,7 @@ std::vector<std::size_t> all_states(const Motion& m) {
 bool bluish(Color c) { return c.b > c.r + 40 && c.b > c.g + 10; }
 
 TEST(MotionScene, StillShowsTheBodyAndThePathInTimeColours) {
-  IntegrateRequest r;
-  r.problem.kind = ProblemKind::heavy_top;
-  r.problem.group = "SOxR";
-  r.integrator = Integrator::rkmk_gauss2;
-  r.h = 1.0 / 1024;
-  r.t_end = 0.1;
-  r.frames = 30;
-  r.reference = false;
+  const IntegrateRequest r = heavy_top_run(1.0 / 1024, 0.1, 30);
   const IntegrateResult result = integrate(r);
   const Motion m = motion_of(r.problem, result.frames, result.frame_times);
   const DecodedImage image = decode_png(shared_renderer().motion_png(m, m.times.size() - 1, FramesOptions{}));
