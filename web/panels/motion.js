@@ -105,7 +105,8 @@ export function createMotionPanel(root) {
       return;
     }
     const decoder = new ImageDecoder({ data: blob.stream(), type: 'image/webp' });
-    await decoder.tracks.ready;
+    // A streamed file's frame count grows as its bytes arrive: it is final once the whole file is read.
+    await decoder.completed;
     const count = decoder.tracks.selectedTrack.frameCount;
     for (let i = 0; i < count; ++i) frames.push(await createImageBitmap((await decoder.decode({ frameIndex: i })).image));
     decoder.close();
@@ -156,6 +157,7 @@ export function createMotionPanel(root) {
     const request = requestOf();
     last = null;
     share.refresh();
+    delete figure.dataset.frames;  // until this run's animation is decoded
     live.textContent = 'Integrating and drawing\u2026';
     const startedAt = performance.now();
     await start(async (signal) => {
