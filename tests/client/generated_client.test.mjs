@@ -54,6 +54,8 @@ test('generated client calls solve', async () => {
   // A field with a default is optional in a request: the generator is told not to make it required.
   writeFileSync(join(work, 'schema.d.ts'), astToString(await openapiTS(doc, { defaultNonNullable: false })));
   symlinkSync(modules, join(work, 'node_modules'));
+  // tsc emits ES modules; Node 18 (Debian 12's) runs a .js file as one only under a package.json that says so.
+  writeFileSync(join(work, 'package.json'), JSON.stringify({ type: 'module' }));
   writeFileSync(join(work, 'client.ts'), `
 import createClient from 'openapi-fetch';
 import type { paths, components } from './schema';
