@@ -88,8 +88,8 @@ test('rigid body on a phone: its momentum on the sphere, then the chain', async 
   assert.ok(width <= 390, `the animation fits the phone (${width} px)`);
   await page.screenshot({ path: `${shots}/motion-rigid-body-390x844.png`, fullPage: true });
   await page.locator('#motion select[name="problem"]').selectOption('chain');
-  await page.locator('#motion input[name="t_end"]').fill('2');
-  // The chain's steps come from its swing's time scale: fewer than 100 over t = 2, each one a frame.
+  await page.locator('#motion input[name="t_end"]').fill('0.25');
+  // The chain's steps come from its joints' time scale; the frames are the steps' when there are fewer than 100.
   const chain = await run(page);
   assert.equal(chain.frames, Math.min(chain.steps, 100) + 1);
   await page.close();

@@ -32,9 +32,13 @@ export function liveResult(form, output, onChange = () => {}) {
       began = performance.now();
       return;
     }
-    lastMs = performance.now() - began;
-    hasResult = !form.querySelector('.form-error')?.textContent;
-    output.dataset.runMs = String(Math.round(lastMs));
+    // A run refused on a field (a bad range, a server 400) or cancelled shows no result and says nothing of
+    // what the next one costs: only a finished run makes the panel cheap.
+    const failed = Boolean(form.querySelector('.form-error')?.textContent)
+      || [...form.querySelectorAll('.field-error')].some((slot) => slot.textContent.trim());
+    hasResult = !failed;
+    if (!failed) lastMs = performance.now() - began;
+    output.dataset.runMs = String(Math.round(performance.now() - began));
     delete form.dataset.live;
     mark(false);
   }).observe(form, { attributes: true, attributeFilter: ['aria-busy'] });
