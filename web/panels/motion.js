@@ -108,7 +108,11 @@ export function createMotionPanel(root) {
     // A streamed file's frame count grows as its bytes arrive: it is final once the whole file is read.
     await decoder.completed;
     const count = decoder.tracks.selectedTrack.frameCount;
-    for (let i = 0; i < count; ++i) frames.push(await createImageBitmap((await decoder.decode({ frameIndex: i })).image));
+    for (let i = 0; i < count; ++i) {
+      const { image } = await decoder.decode({ frameIndex: i });
+      frames.push(await createImageBitmap(image));
+      image.close();  // a decoded VideoFrame holds its memory until closed, not until collected
+    }
     decoder.close();
     slider.max = String(frames.length - 1);
     slider.disabled = false;
