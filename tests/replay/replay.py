@@ -142,7 +142,8 @@ def document(content_type, data, compare):
     return {"bytes": len(data)}
 
 
-def http_answer(port, entry):
+def exchange(port, entry):
+    """Sends a requests.json entry (its body, raw text or padding; its headers) and returns status, type, bytes."""
     headers = dict(entry.get("headers", {}))
     body = None
     if "body" in entry:
@@ -153,7 +154,11 @@ def http_answer(port, entry):
         body = ('{"n":3,"pad":"' + "x" * entry["pad_bytes"] + '"}').encode()
     if body is not None:
         headers.setdefault("Content-Type", "application/json")
-    status, content_type, data = request(port, entry["method"], entry["path"], body, headers)
+    return request(port, entry["method"], entry["path"], body, headers)
+
+
+def http_answer(port, entry):
+    status, content_type, data = exchange(port, entry)
     answer = strip_timing(document(content_type, data, entry.get("compare")))
     if entry.get("unordered") and isinstance(answer, list):  # records in the order parallel runs finished
         answer.sort(key=lambda record: json.dumps(record, sort_keys=True))

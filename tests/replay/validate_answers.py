@@ -72,28 +72,6 @@ def schema_ref(name):
     return {"$ref": "#/components/schemas/" + name}
 
 
-def raw_exchange(port, entry):
-    headers = dict(entry.get("headers", {}))
-    body = None
-    if "body" in entry:
-        body = json.dumps(entry["body"]).encode()
-    elif "raw" in entry:
-        body = entry["raw"].encode()
-    elif "pad_bytes" in entry:
-        body = ('{"n":3,"pad":"' + "x" * entry["pad_bytes"] + '"}').encode()
-    if body is not None:
-        headers.setdefault("Content-Type", "application/json")
-    return replay.request(port, entry["method"], entry["path"], body, headers)
-
-
-def request_value(entry):
-    """The request as the JSON document its schema describes: the body, or a GET's query read as the server does
-    (numbers, lists and JSON text typed by the parameters)."""
-    if "body" in entry:
-        return entry["body"]
-    return None
-
-
 def check_answer(doc, method, path, status, content_type, data):
     faults = []
     kind = content_type.split(";")[0].strip()
@@ -206,7 +184,7 @@ def main():
             doc = Document(json.loads(data))
             for entry in entries:
                 path = urllib.parse.urlsplit(entry["path"]).path
-                status, content_type, data = raw_exchange(port, entry)
+                status, content_type, data = replay.exchange(port, entry)
                 faults = check_answer(doc, entry["method"], path, status, content_type, data)
                 op = doc.operation(entry["method"], path)
                 if status == 200 and op and "requestBody" in op and "body" in entry:
