@@ -4,7 +4,7 @@
 // on the picture turns the camera (the server draws the new view on release). Beside it, the state against time
 // (the body angular velocity) and each invariant's drift, from the integrate route's frames and steps.
 import { postBlob, postJSON } from '../shared/api.js';
-import { invariantChart } from '../shared/chart.js';
+import { invariantChart, stateChart } from '../shared/chart.js';
 import { schemas } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, select } from '../shared/fields.js';
@@ -143,8 +143,8 @@ export function createMotionPanel(root) {
   function drawCharts(request, integration) {
     const w = integration.frames.map((y) => angularVelocity(request.problem, request, y));
     if (w.every((v) => v)) {
-      invariantChart(stateBox, integration.frame_times, [0, 1, 2].map((k) => ({ label: `\u03c9${'\u2081\u2082\u2083'[k]}`,
-        values: w.map((v) => v[k]) })), '\u03c9 (absolute)');
+      stateChart(stateBox, integration.frame_times, [0, 1, 2].map((k) => ({ label: `\u03c9${'\u2081\u2082\u2083'[k]}`,
+        values: w.map((v) => v[k]) })), 'body angular velocity \u03c9 [rad/s]');
     } else stateBox.replaceChildren(el('p', { class: 'hint' }, 'This problem\u2019s state has no angular velocity to plot.'));
     const stepTimes = integration.steps.map((s) => s.t);
     const runs = INVARIANTS.filter(([key]) => integration.steps.some((s) => s[key] !== null && s[key] !== undefined))
@@ -153,7 +153,7 @@ export function createMotionPanel(root) {
         const scale = integration[`${key}_scale`] || Math.abs(first) || 1;
         return { label: name, values: integration.steps.map((s) => (s[key] - first) / scale) };
       });
-    if (runs.length) invariantChart(driftBox, stepTimes, runs, 'relative drift');
+    if (runs.length) invariantChart(driftBox, stepTimes, runs, 'drift', '|I(t) \u2212 I(0)| / scale');
     else driftBox.replaceChildren(el('p', { class: 'hint' }, 'This problem reports no invariants.'));
   }
 

@@ -269,16 +269,27 @@ function drawHLabels(u, tables) {
 // An invariant's error over time (energy, vertical momentum: name), |I(t) - I(0)| / |I(0)| on a log axis so that
 // drifts of very different sizes (implicit Euler against DIRK-CG2) show on one chart; one series per choice, same
 // step times.
-export function invariantChart(container, times, runs, name) {
+// axisLabel: what the values are, when they are not relative to |I(0)| (e.g. relative to the invariant's scale).
+export function invariantChart(container, times, runs, name, axisLabel = `${name}: |I(t) \u2212 I(0)| / |I(0)|`) {
   // The work-precision chart's styles (same choice, same colour and dash): coinciding runs stay visible.
   const series = [{ label: 't', class: 'x-series' }].concat(runs.map((r, i) => styledLine(r.label, i)));
   const opts = {
     series,
     scales: { x: { time: false }, y: { distr: 3, log: 10, range: decades } },
-    axes: [{ label: 'time t' }, logAxis(`${name}: |I(t) \u2212 I(0)| / |I(0)|`)],
+    axes: [{ label: 'time t' }, logAxis(axisLabel)],
     legend: { live: true },
   };
   const plot = mount(container, opts, [times, ...runs.map((r) => r.values.map((v) => positive(Math.abs(v))))]);
+  record(container, plot);
+  return plot;
+}
+
+// State components against time on a linear axis (signed values: an angular velocity's components), one line each.
+export function stateChart(container, times, runs, axisLabel) {
+  const series = [{ label: 't', class: 'x-series' }].concat(runs.map((r, i) => styledLine(r.label, i)));
+  const opts = { series, scales: { x: { time: false } }, axes: [{ label: 'time t' }, { label: axisLabel, size: 60 }],
+    legend: { live: true } };
+  const plot = mount(container, opts, [times, ...runs.map((r) => r.values)]);
   record(container, plot);
   return plot;
 }
