@@ -14,6 +14,9 @@ import { sharePanel } from '../shared/share.js';
 
 const MECHANICS = ['heavy-top', 'rigid-body', 'stiff-body', 'chain'];
 const SIZE = 512;
+// The charts' states: the API's cap on frames. The heavy top's w1, w3 turn with its 150 rad/s spin (a period of
+// about 0.04 s): the animation's 100 frames over t = 2 would alias them into a zigzag.
+const CHART_FRAMES = 1000;
 
 // The state's angular velocity per frame: the heavy top's and the stiff body's w in their SO(3) x R^3 matrix
 // [[R, 0], [0, [[I, w], [0, 1]]]]; the free rigid body's w = I^-1 y^T m, from its parameters (or their defaults).
@@ -65,7 +68,7 @@ export function createMotionPanel(root) {
   }
   const share = sharePanel(form, {
     requests: () => [{ path: '/api/v1/render/motion', body: { ...requestOf(), ...view } },
-      { path: '/api/v1/integrate', body: requestOf() }],
+      { path: '/api/v1/integrate', body: { ...requestOf(), frames: CHART_FRAMES } }],
     data: () => last && stateTable(last),
   });
   root.append(form, el('div', { class: 'output' }, live, figure, charts, share.element));
@@ -165,7 +168,7 @@ export function createMotionPanel(root) {
     live.textContent = 'Integrating and drawing\u2026';
     const startedAt = performance.now();
     await start(async (signal) => {
-      const [integration] = await Promise.all([postJSON('/api/v1/integrate', request, { signal }), load(signal)]);
+      const [integration] = await Promise.all([postJSON('/api/v1/integrate', { ...request, frames: CHART_FRAMES }, { signal }), load(signal)]);
       last = { request, integration };
       figure.hidden = false;
       charts.hidden = false;
