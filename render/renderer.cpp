@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
@@ -19,6 +20,20 @@
 
 namespace lienewton::render {
 namespace {
+
+// The animation's XMP packet: what its frames show (t or n) and the time of each, shortest round-trip decimals,
+// so that a player's slider can name a frame's time however unevenly the frames were picked.
+std::string frame_times_xmp(const Motion& motion, const std::vector<std::size_t>& shown) {
+  std::string times;
+  for (std::size_t at : shown) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, motion.times[at]).ptr;
+    times.append(times.empty() ? "" : " ").append(buffer, end);
+  }
+  return "<x:xmpmeta xmlns:x=\"adobe:ns:meta/\"><rdf:RDF xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\">"
+         "<rdf:Description rdf:about=\"\" xmlns:lienewton=\"urn:lienewton:motion:1\" lienewton:timeName=\"" +
+         motion.time_name + "\" lienewton:frameTimes=\"" + times + "\"/></rdf:RDF></x:xmpmeta>";
+}
 
 // A context and the GL objects made in it; the painter must die while its context is current.
 struct Worker {
@@ -175,7 +190,7 @@ std::vector<unsigned char> Renderer::motion_webp(const Motion& motion, const std
         options, caption, [&](Canvas& c, const Camera& camera) { draw_motion(c, camera, motion, shown[i]); });
     animation.add(pool_->paint(canvas), RowOrder::bottom_up, static_cast<int>(i) * frame_ms);
   }
-  return animation.finish(static_cast<int>(shown.size()) * frame_ms);
+  return animation.finish(static_cast<int>(shown.size()) * frame_ms, frame_times_xmp(motion, shown));
 }
 
 std::vector<unsigned char> Renderer::heatmap_png(const lienewton::SweepResult& sweep, const HeatmapOptions& options,

@@ -44,7 +44,8 @@ class Renderer {
   std::vector<unsigned char> motion_png(const Motion& motion, std::size_t at, const FramesOptions& options,
                                         const Caption& caption = {}, ImageFormat format = ImageFormat::png);
   // The motion at the states `shown` in turn (each below times.size()), each shown frame_ms, as an animated WebP
-  // (webp_animation.hpp). Drawing stops, returning nothing, when keep_going(index into shown) says false. Throws
+  // (webp_animation.hpp) whose XMP metadata names each frame's time (lienewton:frameTimes, lienewton:timeName t or n).
+  // Drawing stops, returning nothing, when keep_going(index into shown) says false. Throws
   // std::invalid_argument for frame_ms outside [1, 10000] or a state out of range.
   std::vector<unsigned char> motion_webp(const Motion& motion, const std::vector<std::size_t>& shown,
                                          const FramesOptions& options, const Caption& caption, int frame_ms,

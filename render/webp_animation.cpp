@@ -16,6 +16,24 @@ struct WebpAnimation::Encoder {
   }
 };
 
+namespace {
+
+// Replaces data by the same file with an XMP chunk (the mux sets the VP8X header's XMP flag).
+void with_xmp(WebPData& data, const std::string& xmp) {
+  WebPMux* mux = WebPMuxCreate(&data, 1);
+  if (!mux) throw std::runtime_error("libwebp: cannot reopen the animation to add its metadata");
+  const WebPData chunk{reinterpret_cast<const std::uint8_t*>(xmp.data()), xmp.size()};
+  WebPData assembled;
+  WebPDataInit(&assembled);
+  const bool done = WebPMuxSetChunk(mux, "XMP ", &chunk, 1) == WEBP_MUX_OK && WebPMuxAssemble(mux, &assembled) == WEBP_MUX_OK;
+  WebPMuxDelete(mux);
+  if (!done) throw std::runtime_error("libwebp: cannot add the animation's metadata");
+  WebPDataClear(&data);
+  data = assembled;
+}
+
+}  // namespace
+
 WebpAnimation::WebpAnimation(int width, int height) : encoder_(std::make_unique<Encoder>()), width_(width), height_(height) {
   WebPAnimEncoderOptions options;
   if (!WebPAnimEncoderOptionsInit(&options)) throw std::runtime_error("libwebp: incompatible version");
@@ -47,8 +65,8 @@ void WebpAnimation::add(std::span<const std::uint8_t> rgb, RowOrder order, int t
   if (!added) throw std::runtime_error(std::string("libwebp: cannot add a frame: ") + WebPAnimEncoderGetError(encoder_->encoder));
 }
 
-std::vector<std::uint8_t> WebpAnimation::finish(int end_ms) {
-  if (!WebPAnimEncoderAdd(encoder_->encoder, nullptr, end_ms, nullptr) ) {
+std::vector<std::uint8_t> WebpAnimation::finish(int end_ms, const std::string& xmp) {
+  if (!WebPAnimEncoderAdd(encoder_->encoder, nullptr, end_ms, nullptr)) {
     throw std::runtime_error(std::string("libwebp: cannot end the animation: ") + WebPAnimEncoderGetError(encoder_->encoder));
   }
   WebPData data;
@@ -56,6 +74,7 @@ std::vector<std::uint8_t> WebpAnimation::finish(int end_ms) {
   if (!WebPAnimEncoderAssemble(encoder_->encoder, &data)) {
     throw std::runtime_error(std::string("libwebp: cannot assemble the animation: ") + WebPAnimEncoderGetError(encoder_->encoder));
   }
+  if (!xmp.empty()) with_xmp(data, xmp);
   std::vector<std::uint8_t> out(data.bytes, data.bytes + data.size);
   WebPDataClear(&data);
   return out;

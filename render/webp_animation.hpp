@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "render/png.hpp"
@@ -20,8 +21,9 @@ class WebpAnimation {
 
   // One frame of RGB pixels shown from timestamp_ms on (increasing); throws std::runtime_error if encoding fails.
   void add(std::span<const std::uint8_t> rgb, RowOrder order, int timestamp_ms);
-  // The file; the last frame is shown until end_ms.
-  std::vector<std::uint8_t> finish(int end_ms);
+  // The file; the last frame is shown until end_ms. A non-empty xmp packet is stored as the file's XMP metadata
+  // (a WebP "XMP " chunk), which travels with the file and which a page can read without decoding a frame.
+  std::vector<std::uint8_t> finish(int end_ms, const std::string& xmp = {});
 
  private:
   struct Encoder;

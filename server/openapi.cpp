@@ -445,11 +445,13 @@ json schemas() {
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_frames))}};
   s["RenderMotionRequest"] = json{
-      {"description", "The requests of RenderFramesRequest (a SolveRequest, or an IntegrateRequest whose frames default "
-                      "to " + std::to_string(kMotionFrames) + "), drawn as a scene of bodies: the heavy top as a disc on a rod "
+      {"description", "The requests of RenderFramesRequest (a SolveRequest, whose iterates are shown, at most " +
+                      std::to_string(kMotionFrames + 1) + " of them evenly spaced; or an IntegrateRequest whose frames "
+                      "default to " + std::to_string(kMotionFrames) + "), drawn as a scene of bodies: the heavy top as a disc on a rod "
                       "from its pivot with its symmetry axis' tip traced, the free rigid body's momentum on its sphere with "
                       "the energy levels, the stiff body's inertia ellipsoid, the chain's links; any other group's bodies "
-                      "as ellipsoids. Plus the picture options below."},
+                      "as ellipsoids. The animated WebP's XMP metadata names each frame's time (lienewton:frameTimes, "
+                      "and lienewton:timeName: t, or n for iterates). Plus the picture options below."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_motion))}};
   s["RenderHeatmapRequest"] = json{

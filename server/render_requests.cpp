@@ -433,10 +433,11 @@ std::vector<unsigned char> render_motion(json request, const Limits& limits, ren
   }
   if (integration) request["frames"] = std::max(frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, kPathSamples * frames}));
   const Shown shown = run_shown(request, integration, limits, hooks, kMotionFrames);
-  // The states shown: every state of a solve; an integration's `frames` + 1 evenly spaced, first and last included.
+  // The states shown: `frames` + 1 evenly spaced (a solve's: kMotionFrames + 1 of its iterates, so that 10000
+  // iterations cost no more to draw than 100), first and last included; the file's metadata names each one's t or n.
   std::vector<std::size_t> states;
   const std::size_t dense = shown.states.size();
-  const std::size_t count = integration ? std::min<std::size_t>(dense, static_cast<std::size_t>(frames) + 1) : dense;
+  const std::size_t count = std::min<std::size_t>(dense, static_cast<std::size_t>(frames) + 1);
   for (std::size_t i = 0; i < count; ++i) states.push_back(count == 1 ? dense - 1 : i * (dense - 1) / (count - 1));
   check_upto(upto, states.size());
   render::Motion motion = render::motion_of(shown.problem, shown.states, shown.times);

@@ -28,9 +28,10 @@ struct RenderCancelled {};
 // N != 3 throws ApiError 422. Throws FieldError/RequestError for invalid requests.
 std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks);
-// Motion: the same requests as frames (an integration's frames default to kMotionFrames), drawn as a scene of
-// bodies (render/motion_of_problem.hpp); format webp (the default) animates every state, frame_ms each, png or svg
-// shows state upto (default the last).
+// Motion: the same requests as frames (an integration's frames default to kMotionFrames; a solve's iterates are
+// shown, at most kMotionFrames + 1 of them evenly spaced), drawn as a scene of bodies (render/motion_of_problem.hpp);
+// format webp (the default) animates them, frame_ms each, its XMP naming each frame's t or n; png or svg shows the
+// frame upto (default the last).
 inline constexpr int kMotionFrames = 100;
 inline constexpr int kMotionFrameMs = 50;
 std::vector<unsigned char> render_motion(json request, const Limits& limits, render::Renderer& renderer,

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "core/integrate.hpp"
@@ -195,6 +196,33 @@ TEST(MotionScene, AnimationFramesAreTheStillsOneByOne) {
   }
   EXPECT_EQ(index, m.times.size());
   WebPAnimDecoderDelete(decoder);
+}
+
+// The XMP packet names each shown frame's time, exactly (shortest round trip), in the order shown.
+TEST(MotionScene, AnimationNamesTheTimeOfEachFrame) {
+  const IntegrateResult result = integrate(rigid_body_run(7));
+  Motion m = motion_of(rigid_body_run(7).problem, result.frames, result.frame_times);
+  const std::vector<std::size_t> shown{0, 3, 4, m.times.size() - 1};
+  const std::vector<unsigned char> webp = shared_renderer().motion_webp(m, shown, FramesOptions{96, 96, 35, 20}, {}, 40);
+  WebPData data{webp.data(), webp.size()};
+  WebPDemuxer* demux = WebPDemux(&data);
+  ASSERT_NE(demux, nullptr);
+  EXPECT_TRUE(WebPDemuxGetI(demux, WEBP_FF_FORMAT_FLAGS) & XMP_FLAG);
+  EXPECT_EQ(WebPDemuxGetI(demux, WEBP_FF_FRAME_COUNT), shown.size());
+  WebPChunkIterator chunk;
+  ASSERT_TRUE(WebPDemuxGetChunk(demux, "XMP ", 1, &chunk));
+  const std::string xmp(reinterpret_cast<const char*>(chunk.chunk.bytes), chunk.chunk.size);
+  WebPDemuxReleaseChunkIterator(&chunk);
+  WebPDemuxDelete(demux);
+  EXPECT_NE(xmp.find("lienewton:timeName=\"t\""), std::string::npos);
+  const std::size_t from = xmp.find("lienewton:frameTimes=\"");
+  ASSERT_NE(from, std::string::npos);
+  std::istringstream times(xmp.substr(from + 22, xmp.find('"', from + 22) - from - 22));
+  std::vector<double> read;
+  for (double t; times >> t;) read.push_back(t);
+  ASSERT_EQ(read.size(), shown.size());
+  for (std::size_t i = 0; i < shown.size(); ++i) EXPECT_EQ(read[i], m.times[shown[i]]) << i;
+  EXPECT_GT(read.back(), read.front());
 }
 
 TEST(MotionScene, RefusesWhatItCannotDraw) {

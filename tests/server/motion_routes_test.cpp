@@ -17,6 +17,7 @@ class MotionRoutes : public testing::SharedServerTest {};
 struct WebpInfo {
   bool valid = false;
   unsigned width = 0, height = 0, frames = 0;
+  std::string xmp;  // the metadata packet, or empty
 };
 
 WebpInfo webp_info(const std::string& body) {
@@ -24,9 +25,22 @@ WebpInfo webp_info(const std::string& body) {
   WebPDemuxer* demux = WebPDemux(&data);
   if (!demux) return {};
   WebpInfo info{true, WebPDemuxGetI(demux, WEBP_FF_CANVAS_WIDTH), WebPDemuxGetI(demux, WEBP_FF_CANVAS_HEIGHT),
-                WebPDemuxGetI(demux, WEBP_FF_FRAME_COUNT)};
+                WebPDemuxGetI(demux, WEBP_FF_FRAME_COUNT), {}};
+  WebPChunkIterator chunk;
+  if (WebPDemuxGetChunk(demux, "XMP ", 1, &chunk)) {
+    info.xmp.assign(reinterpret_cast<const char*>(chunk.chunk.bytes), chunk.chunk.size);
+    WebPDemuxReleaseChunkIterator(&chunk);
+  }
   WebPDemuxDelete(demux);
   return info;
+}
+
+// The value of attribute name="..." in an XMP packet.
+std::string xmp_attribute(const std::string& xmp, const std::string& name) {
+  const std::size_t from = xmp.find(name + "=\"");
+  if (from == std::string::npos) return {};
+  const std::size_t begin = from + name.size() + 2;
+  return xmp.substr(begin, xmp.find('"', begin) - begin);
 }
 
 TEST_F(MotionRoutes, AnIntegrationAnimatesOneFramePerShownState) {
@@ -50,7 +64,39 @@ TEST_F(MotionRoutes, ASolvesIteratesAreItsFrames) {
                            "application/json");
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200) << res->body;
-  EXPECT_EQ(webp_info(res->body).frames, solve["iterations"].get<unsigned>() + 1);  // y_0, ..., y_n
+  const WebpInfo info = webp_info(res->body);
+  EXPECT_EQ(info.frames, solve["iterations"].get<unsigned>() + 1);  // y_0, ..., y_n
+  EXPECT_EQ(xmp_attribute(info.xmp, "lienewton:timeName"), "n");
+  std::string iterates;
+  for (unsigned n = 0; n < info.frames; ++n) iterates.append(n ? " " : "").append(std::to_string(n));
+  EXPECT_EQ(xmp_attribute(info.xmp, "lienewton:frameTimes"), iterates);
+}
+
+// 300 iterates of the fixed point, which does not converge at h = 4, are shown as 101 evenly spaced: the metadata
+// names which (n = 0, 3, 6, ..., 300).
+TEST_F(MotionRoutes, ALongSolveShowsAHundredAndOneOfItsIterates) {
+  auto res = client().Post("/api/v1/render/motion",
+                           R"({"n":3,"h":4,"method":"fixed-point","max_iterations":300,"width":96,"height":96})",
+                           "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const WebpInfo info = webp_info(res->body);
+  ASSERT_EQ(info.frames, 101u);
+  std::string iterates;
+  for (unsigned k = 0; k <= 100; ++k) iterates.append(k ? " " : "").append(std::to_string(3 * k));
+  EXPECT_EQ(xmp_attribute(info.xmp, "lienewton:frameTimes"), iterates);
+}
+
+// An integration's frame times are its states' times: t = 0 first, t_end last, increasing.
+TEST_F(MotionRoutes, AnAnimationNamesEachFramesTime) {
+  auto res = client().Post("/api/v1/render/motion",
+                           R"({"problem":"rigid-body","t_end":1,"h":0.125,"frames":4,"width":96,"height":96})",
+                           "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200) << res->body;
+  const WebpInfo info = webp_info(res->body);
+  EXPECT_EQ(xmp_attribute(info.xmp, "lienewton:timeName"), "t");
+  EXPECT_EQ(xmp_attribute(info.xmp, "lienewton:frameTimes"), "0 0.25 0.5 0.75 1");
 }
 
 TEST_F(MotionRoutes, PngAndSvgShowOneStateAndTheGetFormIsCached) {
