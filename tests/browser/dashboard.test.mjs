@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 import { staleVendored } from './vendor.mjs';
 
 const { binary, webRoot, shots } = testArguments('dashboard.test.mjs');
@@ -136,6 +136,7 @@ test('a solve streams its trace; the chart ends with iterations + 1 points', asy
   const panel = page.locator('#solve');
   await panel.getByLabel('Method').selectOption('fixed-point');
   const sent = page.waitForRequest((r) => r.url().endsWith('/api/v1/solve'));
+  const motionRequest = page.waitForRequest((r) => r.url().endsWith('/api/v1/render/motion'));
   await panel.getByRole('button', { name: 'Run' }).click();
   const request = await sent;
   assert.match(request.headers().accept, /application\/x-ndjson/);
@@ -160,18 +161,21 @@ test('a solve streams its trace; the chart ends with iterations + 1 points', asy
   // Iteration ticks are whole numbers (no 2.5 on a phone-wide chart).
   const ticks = (await page.locator('#solve-chart').getAttribute('data-x-ticks')).split(' ');
   assert.ok(ticks.length > 1 && ticks.every((t) => /^\d+$/.test(t)), ticks.join(' '));
-  // N = 3: the rotation frames of the iterates are shown, the slider at the last iterate.
-  await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.naturalWidth > 0);
-  assert.equal(await page.locator('#solve-frames-slider').getAttribute('max'), String(result.iterations));
+  // The iterates as a motion of bodies, on its last frame (the root found); the slider names each frame's iterate
+  // and the API's ||f(y_n)||, and each frame is the API's still of that iterate.
+  const motionSent = JSON.parse((await motionRequest).postData());
+  assert.equal(motionSent.kind, 'solve');
+  await page.locator('#solve-motion[data-frames]').waitFor();
+  assert.equal(await page.locator('#solve-motion').getAttribute('data-frames'), String(result.iterations + 1));
+  assert.equal(await page.locator('#solve-motion').getAttribute('data-frame'), String(result.iterations));
+  await motionShownUnscaled('solve-motion', motionSent);
   await shot('solve');
-  // Moving the slider to iterate k shows the server's picture of iterates 0..k and the API's ||f(y_k)||.
   const iterates = lines.filter((l) => l.type === 'iteration');
   for (const k of [1, 0, result.iterations]) {
-    await page.locator('#solve-frames-slider').fill(String(k));
-    await page.locator(`#solve-frames[data-step="${k}"]`).waitFor();
-    assert.match(await text('#solve-frames-readout'), new RegExp(`^n = ${k}: .* = ${iterates[k].residual.toExponential(3).replace('+', '\\+')}$`));
-    await page.waitForFunction(() => document.querySelector('#solve-frames-img').complete);
-    await sameImage('#solve-frames-img', '/api/v1/render/frames', { ...JSON.parse(request.postData()), ...await framesSize('#solve-frames-img'), upto: k });
+    await page.locator('#solve-motion-slider').fill(String(k));
+    assert.equal(await page.locator('#solve-motion').getAttribute('data-frame'), String(k));
+    assert.match(await text('#solve-motion-readout'), new RegExp(`^n = ${k}: .* = ${iterates[k].residual.toExponential(3).replace('+', '\\+')} \\(frame ${k}\\)$`));
+    assert.equal(await sameMotionFrame(page, 'solve-motion', motionSent), k);
   }
 });
 
@@ -188,28 +192,16 @@ async function pngsShownUnscaled(where, selector, count) {
   }
 }
 
-// The size a frames <img> was drawn at: its figure's width, at most 512, and shown at that size (not scaled).
-async function framesSize(selector) {
+// A motion player's canvas is drawn as wide as its figure, at most 512, and shown at that size (not scaled).
+async function motionShownUnscaled(id, sent) {
   const [width, height, shown, room] = await page.evaluate((sel) => {
-    const img = document.querySelector(sel);
-    const q = new URL(img.src).searchParams;
-    return [Number(q.get('width')), Number(q.get('height')), img.getBoundingClientRect().width, img.closest('figure').clientWidth];
-  }, selector);
+    const canvas = document.querySelector(`#${sel}-canvas`);
+    return [canvas.width, canvas.height, canvas.getBoundingClientRect().width, canvas.closest('figure').clientWidth];
+  }, id);
+  assert.deepEqual([sent.width, sent.height], [width, height], `#${id} asked for ${sent.width}x${sent.height}`);
   assert.equal(width, height);
-  assert.equal(width, Math.min(512, room - 2), `${selector} drawn ${width} wide in a figure of ${room}`);
-  assert.ok(Math.abs(shown - 2 - width) < 1, `${selector} drawn ${width} wide but shown ${shown}`);
-  return { width, height };
-}
-
-// The <img> shows exactly the PNG the API draws for body (POST), byte for byte.
-async function sameImage(selector, path, body) {
-  const shown = await page.evaluate(async (sel) => {
-    const bytes = new Uint8Array(await (await fetch(document.querySelector(sel).src)).arrayBuffer());
-    return Array.from(bytes);
-  }, selector);
-  const res = await fetch(base + path, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
-  assert.equal(res.status, 200);
-  assert.deepEqual(Buffer.from(shown), Buffer.from(await res.arrayBuffer()), `${selector} is not the API's picture of ${JSON.stringify(body)}`);
+  assert.equal(width, Math.min(512, room - 2), `#${id} drawn ${width} wide in a figure of ${room}`);
+  assert.ok(Math.abs(shown - 2 - width) < 1, `#${id} drawn ${width} wide but shown ${shown}`);
 }
 
 test('"What is this?" next to the problem, method and differential selects follows the select', async () => {
@@ -358,19 +350,21 @@ test('compare draws one residual curve per ticked method', async () => {
     assert.ok(Math.abs(seconds(t) - tolX[i]) <= rounding(t) * 1.0001, `run ${i}: ${t} vs the chart's ${tolX[i]} s`);
   });
   assert.ok(total.reduce((a, b) => a + b, 0) < wall, `solver CPU ${total} s in ${wall} s of wall time`);
-  // N = 3: every run's iterates as frames; pick the last run, step to an iterate, see the API's picture and residual.
-  assert.equal(await panel.locator('#compare-frames-run option').count(), ticked);
-  await panel.locator('#compare-frames-run').selectOption({ index: ticked - 1 });
+  // Every run's iterates as a motion; pick the last run, step to an iterate, see the API's still and residual.
+  assert.equal(await panel.locator('#compare-motion-run option').count(), ticked);
+  await page.locator('#compare-motion[data-frames]').waitFor();
+  const motionSent = page.waitForRequest((r) => r.url().endsWith('/api/v1/render/motion'));
+  await panel.locator('#compare-motion-run').selectOption({ index: ticked - 1 });
+  const sent = JSON.parse((await motionSent).postData());
   const [method, differential] = (await panel.locator('input[name="runs"]:checked').last().getAttribute('value')).split('|');
   const run = { problem: 'paper-linear', n: 3, h: 0.5, tol: 1e-13, max_iterations: 100, seed: 1, method, differential,
     include_iterates: false };
+  assert.deepEqual({ ...run, kind: 'solve' }, Object.fromEntries(Object.keys(run).concat('kind').map((key) => [key, sent[key]])));
   const trace = (await ndjson('/api/v1/solve', run)).filter((l) => l.type === 'iteration');
-  assert.equal(await page.locator('#compare-frames-slider').getAttribute('max'), String(trace.length - 1));
-  await page.locator('#compare-frames-slider').fill('2');
-  await page.locator('#compare-frames[data-step="2"]').waitFor();
-  assert.equal(await text('#compare-frames-readout'), `n = 2: \u2016f(y\u2082)\u2016 = ${trace[2].residual.toExponential(3)}`);
-  await page.waitForFunction(() => document.querySelector('#compare-frames-img').complete);
-  await sameImage('#compare-frames-img', '/api/v1/render/frames', { ...run, ...await framesSize('#compare-frames-img'), upto: 2 });
+  await page.waitForFunction((n) => document.querySelector('#compare-motion')?.dataset.frames === String(n), trace.length);
+  await page.locator('#compare-motion-slider').fill('2');
+  assert.equal(await text('#compare-motion-readout'), `n = 2: \u2016f(y\u2082)\u2016 = ${trace[2].residual.toExponential(3)} (frame 2)`);
+  assert.equal(await sameMotionFrame(page, 'compare-motion', sent), 2);
   await shot('compare');
 });
 
@@ -520,24 +514,24 @@ test('the work-precision chart has one series per ticked choice', async () => {
   assert.match(hover, /h = .*solver CPU time .*global error .*iterations/);
   assert.equal(await page.locator('#work-precision-chart').getAttribute('data-series'), String(ticked));
   assert.equal(await page.locator('#energy-chart').getAttribute('data-series'), String(ticked));
-  // The rigid body's trajectory as rotation frames: a slider over the time steps of the chosen run.
+  // The rigid body's motion in the chosen run: the slider names each frame's time, step and energy error.
   const energyRequest = { problem: 'rigid-body', n: 3, t_end: 1, tol: 1e-13, max_iterations: 100, seed: 1, h: 0.125 };
-  await panel.locator('#trajectory-frames-run').selectOption({ index: 1 });
+  await page.locator('#trajectory-motion[data-frames]').waitFor();
+  const motionSent = page.waitForRequest((r) => r.url().endsWith('/api/v1/render/motion'));
+  await panel.locator('#trajectory-motion-run').selectOption({ index: 1 });
+  const sent = JSON.parse((await motionSent).postData());
   const choice = wp.series[1].choice;
-  const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice, frames: 1000 })).body;
-  // The slider steps through the frames the server reports (frame_steps): here every one of the 8 steps.
-  assert.deepEqual(run.frame_steps, [0, 1, 2, 3, 4, 5, 6, 7, 8]);
-  assert.equal(await page.locator('#trajectory-frames-slider').getAttribute('max'), String(run.frame_steps.length - 1));
+  const run = (await api('/api/v1/integrate', { ...energyRequest, ...choice })).body;
+  // Every one of the 8 steps is a frame (fewer than the animation's 100).
+  await page.waitForFunction(() => document.querySelector('#trajectory-motion')?.dataset.frames === '9');
   for (const k of [3, 0, run.steps.length]) {
-    await page.locator('#trajectory-frames-slider').fill(String(k));
-    await page.locator(`#trajectory-frames[data-step="${k}"]`).waitFor();
+    await page.locator('#trajectory-motion-slider').fill(String(k));
     const energy = k ? run.steps[k - 1].energy : run.initial_energy;
-    assert.equal(await text('#trajectory-frames-readout'),
-      `step ${k}, t = ${k * 0.125}: energy \u2212 energy(0) = ${(energy - run.initial_energy) === 0 ? '0' : (energy - run.initial_energy).toExponential(3)}`);
-    await page.waitForFunction(() => document.querySelector('#trajectory-frames-img').complete);
-    await sameImage('#trajectory-frames-img', '/api/v1/render/frames',
-      { ...energyRequest, ...choice, kind: 'integrate', frames: 1000, ...await framesSize('#trajectory-frames-img'), upto: k });
+    assert.equal(await text('#trajectory-motion-readout'),
+      `step ${k}, t = ${k * 0.125} (frame ${k}): energy \u2212 energy(0) = ${(energy - run.initial_energy) === 0 ? '0' : (energy - run.initial_energy).toExponential(3)}`);
+    assert.equal(await sameMotionFrame(page, 'trajectory-motion', sent), k);
   }
+  assert.equal(sent.kind, 'integrate');
   await shot('speed');
 });
 

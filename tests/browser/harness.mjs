@@ -87,3 +87,30 @@ export function testArguments(script) {
   mkdirSync(shots, { recursive: true });
   return { binary, webRoot, shots };
 }
+
+// The motion player `id` (web/shared/motion_player.js) shows, at the frame it is on, exactly the still the API
+// draws of that frame: render/motion as a PNG of the request the player sent (its view and size) at upto = the
+// frame. Returns the frame compared.
+export async function sameMotionFrame(page, id, sentBody) {
+  const result = await page.evaluate(async ({ id, body }) => {
+    const canvas = document.querySelector(`#${id}-canvas`);
+    const upto = Number(document.querySelector(`#${id}`).dataset.frame);
+    const res = await fetch('/api/v1/render/motion', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify({ ...body, format: 'png', upto }) });
+    if (!res.ok) return { error: await res.text() };
+    const still = await createImageBitmap(await res.blob());
+    if (still.width !== canvas.width || still.height !== canvas.height) {
+      return { error: `still ${still.width}x${still.height}, canvas ${canvas.width}x${canvas.height}` };
+    }
+    const other = new OffscreenCanvas(canvas.width, canvas.height);
+    other.getContext('2d').drawImage(still, 0, 0);
+    const a = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    const b = other.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    let differing = 0;
+    for (let i = 0; i < a.length; ++i) differing += a[i] !== b[i];
+    return { differing, upto };
+  }, { id, body: sentBody });
+  if (result.error) throw new Error(`#${id}: ${result.error}`);
+  if (result.differing) throw new Error(`#${id} frame ${result.upto}: ${result.differing} values differ from the API's still`);
+  return result.upto;
+}

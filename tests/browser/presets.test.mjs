@@ -238,8 +238,8 @@ test('the heavy top and the stiff body can be edited as programs on SO(3)xR^3, a
     const status = await panel.locator('#solve-result [data-result="status"] .badge').getAttribute('data-status');
     assert.ok(['converged', 'stagnated'].includes(status), `${problem}: ${status}`);
     assert.ok(Number(await panel.locator('#solve-result [data-result="residual"]').innerText()) < 1e-9);
-    // The rotation frames of the iterates draw too (a GET whose g has commas).
-    await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.naturalWidth > 0);
+    // The iterates' motion draws too.
+    await page.locator('#solve-motion[data-frames]').waitFor();
   }
   assert.deepEqual(errors, []);
 });

@@ -231,7 +231,7 @@ test('Run is on the first screen of every panel at 1440x900 and 390x844', async 
   await page.goto(`${base}/#solve`);
   await page.locator('#solve').getByRole('button', { name: 'Run' }).click();
   await page.locator('#solve [data-result="iterations"]').waitFor();
-  await page.waitForFunction(() => document.querySelector('#solve-frames-img')?.complete);
+  await page.locator('#solve-motion[data-frames]').waitFor();
   const [output, form] = await page.evaluate(() => ['.output', 'form'].map((s) => document.querySelector(`#solve ${s}`).getBoundingClientRect().top));
   assert.ok(Math.abs(output) < 2 && form > output, `output at ${output}, form at ${form}`);
   await page.setViewportSize({ width: 1280, height: 860 });

@@ -5,7 +5,7 @@ import { residualChart, residualTimeChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix, folded } from '../shared/fields.js';
 import { checkedValues, runner } from '../shared/form.js';
-import { runFrames } from '../shared/frame_stepper.js';
+import { drawsBodies, runMotions } from '../shared/motion_player.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, fmtExp, fmtRate, fmtSeconds, iterateText, label, mathText } from '../shared/labels.js';
 import { limitFields, problemFields, readCommon } from '../shared/request.js';
@@ -33,9 +33,8 @@ export function createComparePanel(root) {
   const timeBox = el('div', { class: 'chart', id: 'compare-time-chart' });
   const timeCaption = el('figcaption', {}, 'Residual against solver CPU time, iteration by iteration');
   const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
-  const frames = runFrames('compare-frames', 'Rotation frames of the iterates (N = 3)', 'Iterate n',
-    'Iterates y\u2080 \u2026 y\u2099 of the chosen run as rotated frames (server-rendered PNG): y\u2099 bold, '
-    + 'earlier ones fainter, z dashed.');
+  const frames = runMotions('compare-motion', 'The iterates as bodies', { at: 'last',
+    caption: 'The iterates y\u2080 \u2026 y\u2099 of the chosen run (drag to turn the view); the path of a body point is coloured by n.' });
   // The solves Run sends, one per ticked method and differential.
   function requestsOf() {
     const picks = checkedValues(form, 'runs').map((v) => v.split('|'));
@@ -104,11 +103,6 @@ export function createComparePanel(root) {
       }
       last = runs;
       live.textContent = `Compared ${picks.length} runs.`;
-      // Every N = 3 run's iterates as frames: the server re-runs the chosen solve to draw iterates 0..n.
-      if (requests[0].n === 3) {
-        frames.show(requests.map((request, i) => ({ label: labels[i], request, count: columns[i].length,
-          describe: (n) => iterateText(n, columns[i][n]) })));
-      }
       // One run's CPU time is noise at the microsecond scale: each run again REPEATS times, median and range.
       for (const [i, { request }] of runs.entries()) {
         live.textContent = `Timing ${labels[i]} again (${REPEATS} runs)\u2026`;
@@ -129,6 +123,10 @@ export function createComparePanel(root) {
       for (const [i, row] of rows.entries()) row[2] = timeToTol(scaled[i], tol);
       tableBox.replaceChildren(resultsTable(rows), noiseNote(rows));
       live.textContent = `Compared ${picks.length} runs, each timed ${REPEATS} times more.`;
+      // Each run's iterates as bodies, once the timings are done (drawing beside them would load the server they
+      // time): the server re-runs the chosen solve to draw them.
+      if (drawsBodies(requests[0])) await frames.show(requests.map((request, i) => ({ label: labels[i], request: { ...request, kind: 'solve' },
+        describe: (k, n) => `${iterateText(n, columns[i][n])} (frame ${k})` })));
     });
     share.refresh();
   });

@@ -1,19 +1,19 @@
 // Motion panel: a built-in mechanical problem integrated and shown as it moves. The server draws the bodies
-// (render/motion: solids from their inertia, the path of a telling point coloured by time) as an animated WebP;
-// the page decodes its frames (ImageDecoder) so that Play/Pause and the time slider step through them, and a drag
-// on the picture turns the camera (the server draws the new view on release). Beside it, the state against time
-// (the body angular velocity) and each invariant's drift, from the integrate route's frames and steps.
-import { postBlob, postJSON } from '../shared/api.js';
+// (render/motion: solids from their inertia, the path of a telling point coloured by time), played by
+// motion_player.js. Beside it, the state against time (the body angular velocity) and each invariant's drift,
+// from the integrate route's frames and steps.
+import { postJSON } from '../shared/api.js';
 import { invariantChart, stateChart } from '../shared/chart.js';
 import { schemas } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { INTEGRATORS, PROBLEMS } from '../shared/labels.js';
+import { motionPlayer } from '../shared/motion_player.js';
+import { programFields, problemOf } from '../shared/request.js';
 import { sharePanel } from '../shared/share.js';
 
 const MECHANICS = ['heavy-top', 'rigid-body', 'stiff-body', 'chain'];
-const SIZE = 512;
 // The charts' states: the API's cap on frames. The heavy top's w1, w3 turn with its 150 rad/s spin (a period of
 // about 0.04 s): the animation's 100 frames over t = 2 would alias them into a zigzag.
 const CHART_FRAMES = 1000;
@@ -31,124 +31,92 @@ function angularVelocity(problem, request, y) {
 
 const INVARIANTS = [['energy', 'energy'], ['vertical_momentum', 'vertical momentum'], ['axial_spin', 'axial spin']];
 
+// What the state chart can plot: the body angular velocity (the built-in mechanics), and every entry y(i,j) of the
+// state matrix that moves (MATLAB's 1-based indices, as a program names them). { key, label, series: [{ label,
+// values }] } per choice.
+function stateComponents(request, integration) {
+  const choices = [];
+  const w = integration.frames.map((y) => angularVelocity(request.problem, request, y));
+  if (w.length && w.every((v) => v)) {
+    choices.push({ key: 'omega', label: '\u03c9 (body angular velocity)',
+      series: [0, 1, 2].map((k) => ({ label: `\u03c9${'\u2081\u2082\u2083'[k]}`, column: `omega_${k + 1}`,
+        values: w.map((v) => v[k]) })) });
+  }
+  const [first] = integration.frames;
+  for (const [i, row] of (first ?? []).entries()) {
+    for (const j of row.keys()) {
+      const values = integration.frames.map((y) => y[i][j]);
+      const range = Math.max(...values) - Math.min(...values);
+      if (!(range > 1e-12 * Math.max(1, ...values.map(Math.abs)))) continue;  // a constant entry: nothing to plot
+      const label = `y(${i + 1},${j + 1})`;
+      choices.push({ key: label, label, range, series: [{ label, column: `y_${i + 1}_${j + 1}`, values }] });
+    }
+  }
+  return choices;
+}
+
+// The axis label of the chosen components.
+function stateAxis(chosen) {
+  const omega = chosen.some((c) => c.key === 'omega');
+  if (omega && chosen.length === 1) return 'body angular velocity \u03c9 [rad/s]';
+  return omega ? '\u03c9 [rad/s] and entries of y' : 'entries y(i,j) of the state';
+}
+
 export function createMotionPanel(root) {
   const form = el('form', { class: 'controls', novalidate: true, 'aria-label': 'Motion request' },
     select('problem', 'Problem', PROBLEMS.filter(([v]) => MECHANICS.includes(v)), 'heavy-top'),
+    programFields(),
     select('integrator', 'Integrator', INTEGRATORS, 'rkmk-gauss2'),
     contractNumber('IntegrateRequest', 't_end', 'End time t_end', { value: 2 }),
-    contractNumber('IntegrateRequest', 'n', 'Bodies (chain)', { value: 3, hint: 'The chain\u2019s links; other problems have one body' }),
+    contractNumber('IntegrateRequest', 'n', 'N (the chain\u2019s links, your g\u2019s N)', { value: 3,
+      hint: 'The chain\u2019s links, or N of your g\u2019s group; the other problems have one body' }),
     contractNumber('RenderMotionRequest', 'frame_ms', 'Milliseconds per frame', { value: 50 }),
     actions());
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to see the motion.');
-  const canvas = el('canvas', { id: 'motion-canvas', width: SIZE, height: SIZE, tabindex: 0,
-    'aria-label': 'The motion; drag to turn the view' });
-  const play = el('button', { type: 'button', id: 'motion-play', disabled: true }, 'Play');
-  const slider = el('input', { type: 'range', id: 'motion-slider', min: 0, max: 0, step: 1, value: 0, disabled: true,
-    'aria-label': 'Time' });
-  const readout = el('output', { id: 'motion-readout', for: 'motion-slider', class: 'frame-readout' });
-  const note = el('figcaption', {}, 'Drag the picture to turn the view; the server draws it again on release.');
-  const figure = el('figure', { class: 'frames motion', id: 'motion-figure', hidden: true },
-    el('div', { class: 'frame-slider' }, play, slider), readout, canvas, note);
+  const player = motionPlayer('motion-figure', {
+    caption: 'Drag the picture to turn the view; the server draws it again on release.' });
   const stateBox = el('div', { class: 'chart', id: 'motion-state' });
+  const picker = el('select', { id: 'motion-components', multiple: true, size: 5 });
+  let components = [];  // stateComponents of the last run
   const driftBox = el('div', { class: 'chart', id: 'motion-drift' });
   const charts = el('div', { class: 'result-row', hidden: true, id: 'motion-charts' },
-    el('figure', {}, el('figcaption', {}, 'Body angular velocity \u03c9(t)'), stateBox),
+    el('figure', {}, el('figcaption', {}, 'The state against time'),
+      el('div', { class: 'field' }, el('label', { for: picker.id }, 'Plot (ctrl-click for several)'), picker), stateBox),
     el('figure', {}, el('figcaption', {}, 'Invariants\u2019 drift |I(t) \u2212 I(0)| / scale'), driftBox));
   const start = runner(form, live);
   let last = null;  // { request, integration }
-  const view = { azimuth_deg: 35, elevation_deg: 20 };
-  let frames = [];  // ImageBitmaps of the animation, or none (the <img> fallback plays it)
-  let timer = null;
 
   function requestOf() {
-    const problem = value(form, 'problem');
-    const request = { problem, integrator: value(form, 'integrator'), t_end: value(form, 't_end'), frames: 100 };
-    if (problem === 'chain') request.n = value(form, 'n');
+    const request = { ...problemOf(form), integrator: value(form, 'integrator'), t_end: value(form, 't_end'), frames: 100 };
+    if (request.g || request.problem === 'chain') request.n = value(form, 'n');
     return request;
   }
   const share = sharePanel(form, {
-    requests: () => [{ path: '/api/v1/render/motion', body: { ...requestOf(), ...view } },
+    requests: () => [{ path: '/api/v1/render/motion', body: requestOf() },
       { path: '/api/v1/integrate', body: { ...requestOf(), frames: CHART_FRAMES } }],
-    data: () => last && stateTable(last),
+    data: () => last && stateTable(last, chosen()),
   });
-  root.append(form, el('div', { class: 'output' }, live, figure, charts, share.element));
+  root.append(form, el('div', { class: 'output' }, live, player.element, charts, share.element));
 
-  function show(k) {
-    slider.value = String(k);
-    // The frame's time is drawn in the picture: the server picks the frames evenly along its own steps.
-    const words = `frame ${k} of ${frames.length - 1}`;
-    readout.textContent = words;
-    slider.setAttribute('aria-valuetext', words);
-    figure.dataset.frame = String(k);
-    if (frames[k]) canvas.getContext('2d').drawImage(frames[k], 0, 0, canvas.width, canvas.height);
-  }
-  function pause() {
-    clearInterval(timer);
-    timer = null;
-    play.textContent = 'Play';
-    figure.dataset.playing = 'false';
-  }
-  play.addEventListener('click', () => {
-    if (timer) return pause();
-    play.textContent = 'Pause';
-    figure.dataset.playing = 'true';
-    timer = setInterval(() => show((Number(slider.value) + 1) % frames.length), value(form, 'frame_ms') || 50);
-  });
-  slider.addEventListener('input', () => { pause(); show(Number(slider.value)); });
-
-  // Decodes every frame of the animation; without ImageDecoder (older browsers) the picture plays by itself.
-  async function load(signal) {
-    const blob = await postBlob('/api/v1/render/motion', { ...requestOf(), ...view, width: SIZE, height: SIZE,
-      frame_ms: value(form, 'frame_ms') }, 'image/webp', { signal });
-    pause();
-    frames = [];
-    if (typeof ImageDecoder === 'undefined') {
-      const img = el('img', { src: URL.createObjectURL(blob), alt: 'The motion, animated', width: SIZE, height: SIZE });
-      canvas.replaceWith(img);
+  const chosen = () => components.filter((c) => [...picker.selectedOptions].some((o) => o.value === c.key));
+  function drawState() {
+    const picked = chosen();
+    if (!picked.length) {
+      stateBox.replaceChildren(el('p', { class: 'hint' }, components.length ? 'Choose what to plot.' : 'Nothing in the state moves.'));
+      delete stateBox.dataset.series;
       return;
     }
-    const decoder = new ImageDecoder({ data: blob.stream(), type: 'image/webp' });
-    // A streamed file's frame count grows as its bytes arrive: it is final once the whole file is read.
-    await decoder.completed;
-    const count = decoder.tracks.selectedTrack.frameCount;
-    for (let i = 0; i < count; ++i) {
-      const { image } = await decoder.decode({ frameIndex: i });
-      frames.push(await createImageBitmap(image));
-      image.close();  // a decoded VideoFrame holds its memory until closed, not until collected
-    }
-    decoder.close();
-    slider.max = String(frames.length - 1);
-    slider.disabled = false;
-    play.disabled = false;
-    figure.dataset.frames = String(frames.length);
+    stateChart(stateBox, last.integration.frame_times, picked.flatMap((c) => c.series), stateAxis(picked));
   }
-
-  // Drag: 0.4 degrees per pixel, the elevation kept within +-89; the new view is drawn on release.
-  let drag = null;
-  canvas.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY, ...view }; canvas.setPointerCapture(e.pointerId); });
-  canvas.addEventListener('pointermove', (e) => {
-    if (!drag) return;
-    view.azimuth_deg = Math.round((drag.azimuth_deg - 0.4 * (e.clientX - drag.x)) % 360);
-    view.elevation_deg = Math.round(Math.max(-89, Math.min(89, drag.elevation_deg + 0.4 * (e.clientY - drag.y))));
-    note.textContent = `View: azimuth ${view.azimuth_deg}\u00b0, elevation ${view.elevation_deg}\u00b0 (release to draw)`;
-  });
-  canvas.addEventListener('pointerup', async () => {
-    if (!drag) return;
-    const moved = drag.azimuth_deg !== view.azimuth_deg || drag.elevation_deg !== view.elevation_deg;
-    drag = null;
-    if (!moved || !last) return;
-    const k = Number(slider.value);
-    await start(async (signal) => { await load(signal); show(Math.min(k, frames.length - 1)); });
-    note.textContent = `View: azimuth ${view.azimuth_deg}\u00b0, elevation ${view.elevation_deg}\u00b0`;
-    figure.dataset.azimuth = String(view.azimuth_deg);
-  });
+  picker.addEventListener('change', () => { drawState(); share.refresh(); });
 
   function drawCharts(request, integration) {
-    const w = integration.frames.map((y) => angularVelocity(request.problem, request, y));
-    if (w.every((v) => v)) {
-      stateChart(stateBox, integration.frame_times, [0, 1, 2].map((k) => ({ label: `\u03c9${'\u2081\u2082\u2083'[k]}`,
-        values: w.map((v) => v[k]) })), 'body angular velocity \u03c9 [rad/s]');
-    } else stateBox.replaceChildren(el('p', { class: 'hint' }, 'This problem\u2019s state has no angular velocity to plot.'));
+    components = stateComponents(request, integration);
+    // Shown at first: omega, else the three entries that move the most.
+    const shown = components.some((c) => c.key === 'omega') ? ['omega']
+      : components.slice().sort((a, b) => b.range - a.range).slice(0, 3).map((c) => c.key);
+    picker.replaceChildren(...components.map((c) => el('option', { value: c.key, selected: shown.includes(c.key) }, c.label)));
+    drawState();
     const stepTimes = integration.steps.map((s) => s.t);
     const runs = INVARIANTS.filter(([key]) => integration.steps.some((s) => s[key] !== null && s[key] !== undefined))
       .map(([key, name]) => {
@@ -164,17 +132,15 @@ export function createMotionPanel(root) {
     const request = requestOf();
     last = null;
     share.refresh();
-    delete figure.dataset.frames;  // until this run's animation is decoded
     live.textContent = 'Integrating and drawing\u2026';
     const startedAt = performance.now();
     await start(async (signal) => {
-      const [integration] = await Promise.all([postJSON('/api/v1/integrate', { ...request, frames: CHART_FRAMES }, { signal }), load(signal)]);
+      const [integration] = await Promise.all([postJSON('/api/v1/integrate', { ...request, frames: CHART_FRAMES }, { signal }),
+        player.load(request, { signal, frameMs: value(form, 'frame_ms') || undefined })]);
       last = { request, integration };
-      figure.hidden = false;
       charts.hidden = false;
-      show(0);
       drawCharts(request, integration);
-      live.textContent = `${integration.status}: ${integration.steps.length} steps, ${frames.length} frames, `
+      live.textContent = `${integration.status}: ${integration.steps.length} steps, ${player.frameCount} frames, `
         + `${((performance.now() - startedAt) / 1000).toFixed(2)} s from Run to picture.`;
       share.refresh();
     });
@@ -183,10 +149,10 @@ export function createMotionPanel(root) {
   return { share, run };
 }
 
-function stateTable({ request, integration }) {
-  const w = integration.frames.map((y) => angularVelocity(request.problem, request, y));
-  const columns = ['t', 'omega_1', 'omega_2', 'omega_3'];
-  return { name: 'motion-state', columns,
-    rows: integration.frame_times.map((t, i) => [t, ...(w[i] ?? [null, null, null])]),
+// The CSV: t and the components plotted (y(i,j) as y_i_j).
+function stateTable({ request, integration }, chosen) {
+  const series = chosen.flatMap((c) => c.series);
+  return { name: 'motion-state', columns: ['t', ...series.map((s) => s.column)],
+    rows: integration.frame_times.map((t, i) => [t, ...series.map((s) => s.values[i])]),
     json: { request, result: integration } };
 }

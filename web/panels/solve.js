@@ -1,12 +1,13 @@
-// Solve panel: one solve, streamed iteration by iteration into a log-residual chart, then the result,
-// the rotation frames of the iterates (N = 3, with a slider over n) and the full trace as a table.
+// Solve panel: one solve, streamed iteration by iteration into a log-residual chart, then the result, the
+// iterates as a motion of bodies (motion_player.js: Newton snapping in, the fixed point wandering) and the full
+// trace as a table.
 import { stream } from '../shared/api.js';
 import { residualChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, folded, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
-import { frameStepper } from '../shared/frame_stepper.js';
 import { CONTINUATION, DIFFERENTIALS, GLOBALIZATIONS, METHODS, fmtExp, fmtSeconds, iterateText } from '../shared/labels.js';
+import { drawsBodies, motionPlayer } from '../shared/motion_player.js';
 import { DEFAULTS, fill, limitFields, problemFields, readCommon } from '../shared/request.js';
 import { sharePanel } from '../shared/share.js';
 import { resultList } from '../shared/summary.js';
@@ -28,8 +29,9 @@ export function createSolvePanel(root) {
   const live = el('p', { class: 'live', role: 'status' }, 'Press Run to solve y = z exp(h g(y)).');
   const chartBox = el('div', { class: 'chart', id: 'solve-chart' });
   const summary = el('div', { class: 'result', id: 'solve-result' });
-  const frames = frameStepper('solve-frames', 'Iterate n',
-    'Iterates y\u2080 \u2026 y\u2099 as rotated frames (server-rendered PNG): y\u2099 bold, earlier ones fainter, z dashed.');
+  const motion = motionPlayer('solve-motion', { at: 'last',
+    caption: 'The iterates y\u2080 \u2026 y\u2099 as bodies (drag to turn the view); the path of a body point is coloured by n.' });
+  const motionNote = el('p', { class: 'hint', id: 'solve-motion-note', hidden: true });
   const table = el('details', { class: 'trace', hidden: true }, el('summary', {}, 'Trace table'), el('div', { class: 'table-wrap' }));
 
   const newChart = () => residualChart(chartBox, ['\u2016f(y\u2099)\u2016']);
@@ -53,7 +55,7 @@ export function createSolvePanel(root) {
       rows: last.records.map((r) => TRACE_COLUMNS.map((c) => r[c] ?? null)),
       json: { request: last.request, result: last.result, trace: last.records } },
   });
-  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, frames.element), table,
+  root.append(form, el('div', { class: 'output' }, live, chartBox, el('div', { class: 'result-row' }, summary, el('div', {}, motion.element, motionNote)), table,
     share.element));
 
   async function run() {
@@ -64,7 +66,8 @@ export function createSolvePanel(root) {
     let queued = false;
     const draw = () => { queued = false; chart.set([records.map((r) => r.residual)]); };
     summary.replaceChildren();
-    frames.hide();
+    motion.hide();
+    motionNote.hidden = true;
     table.hidden = true;
     chart = newChart(); // fresh axes, not the previous run's range
     live.textContent = 'Solving\u2026';
@@ -87,9 +90,15 @@ export function createSolvePanel(root) {
       summary.replaceChildren(resultList(result));
       table.querySelector('.table-wrap').replaceChildren(traceTable(records));
       table.hidden = false;
-      // Every N = 3 solve, whatever its method or status: the server re-runs it to draw iterates 0..n.
-      if (request.n === 3) {
-        frames.show(request, records.length, (n) => iterateText(n, records[n].residual));
+      // Every solve with bodies, whatever its method or status: the server re-runs it to draw its iterates.
+      if (!drawsBodies(request)) return;
+      try {
+        await motion.load({ ...request, kind: 'solve' }, { signal,
+          describe: (k, n) => `${iterateText(n, records[n]?.residual)} (frame ${k})` });
+      } catch (e) {
+        if (e.name === 'AbortError') throw e;
+        motionNote.textContent = `No motion of the iterates: ${e.message}`;
+        motionNote.hidden = false;
       }
     });
     share.refresh();

@@ -6,7 +6,7 @@ import { invariantChart, workPrecisionChart } from '../shared/chart.js';
 import { el } from '../shared/dom.js';
 import { actions, choiceMatrix, contractNumber, folded, number, range, select } from '../shared/fields.js';
 import { checkedValues, runner, value, wholeRange } from '../shared/form.js';
-import { runFrames } from '../shared/frame_stepper.js';
+import { runMotions } from '../shared/motion_player.js';
 import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { programFields, problemOf } from '../shared/request.js';
@@ -14,9 +14,8 @@ import { sharePanel } from '../shared/share.js';
 import { statusBadge } from '../shared/summary.js';
 import { REPEATS, median, withinNoise } from '../shared/repeats.js';
 
-// Frames of the trajectory: every step up to the API's cap of 1000, then evenly spaced (the server says which
-// steps in frame_steps).
-const FRAMES = 1000;
+// The animation's frames: the motion route's default, a few seconds of play.
+const MOTION_FRAMES = 100;
 
 const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixed-point|exact',
   'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
@@ -84,9 +83,8 @@ export function createSpeedPanel(root) {
     el('section', { class: 'energy', hidden: true }, el('h3', {}, `${i.label}: error over time`),
       el('p', { class: 'hint' }, i.description), invariantBoxes[i.value], coincideNotes[i.value])]));
   const tableBox = el('div', { class: 'table-wrap', id: 'energy-table' });
-  const trajectory = runFrames('trajectory-frames', 'The trajectory as rotation frames', 'Time step',
-    'States y(t\u2080) \u2026 y(t\u2096) of the chosen run as rotated frames (server-rendered PNG): the body axes '
-    + 'of each state\u2019s rotation (the top\u2019s R on SOxR), y(t\u2096) bold, earlier ones fainter, y(0) dashed.');
+  const trajectory = runMotions('trajectory-motion', 'The motion of the chosen run',
+    { caption: 'The states y(t) of the chosen run as bodies (drag to turn the view); the path is coloured by t.' });
   // The invariants the request's problem reports (none for a program g).
   const invariantsOf = (common) => (common.g ? [] : entry('problem', common.problem).invariants ?? []);
   // The work-precision request, then for a problem with invariants one integration per choice (their plots).
@@ -104,7 +102,7 @@ export function createSpeedPanel(root) {
     // An empty box: the step the last run chose (energyStep), so that the shared curl commands repeat it.
     const energyH = value(form, 'energy_h') === '' ? energyStep : value(form, 'energy_h');
     const energy = !invariantsOf(common).length ? [] : choices.map((choice) => ({ path: '/api/v1/integrate',
-      body: { ...common, ...choice, h: energyH, frames: FRAMES } }));
+      body: { ...common, ...choice, h: energyH } }));
     return [{ path: '/api/v1/work-precision', body: { ...common, choices, ...(h ? { h } : {}) } }, ...energy];
   }
   let last = null;  // { wp, runs } of the last run
@@ -179,7 +177,7 @@ export function createSpeedPanel(root) {
       }
       tableBox.replaceChildren(integrateTable(runs, invariants));
       trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
-        { ...request, kind: 'integrate' }, invariants)));
+        { ...request, kind: 'integrate', frames: MOTION_FRAMES }, invariants)));
       live.textContent = `Done: ${timed}, ${runs.length} invariant runs.`;
     });
     share.refresh();
@@ -190,19 +188,19 @@ export function createSpeedPanel(root) {
 // One CSV row per point of the work-precision diagram: its choice, h, and what it cost and reached.
 const POINT_COLUMNS = ['integrator', 'method', 'differential', 'h', 'global_error', 'cpu_seconds', 'iterations'];
 
-// One run for the trajectory's stepper: the render request (the same frames as the integration, which ran with
-// FRAMES) and per slider position the step and time the server reports for that frame (frame_steps,
-// frame_times) and its invariants' errors.
+// One run for the motion player: its render request and, per frame at time t, the step of the integration that
+// ended at t (the same steps: the render re-runs the request) with its invariants' errors.
 function trajectoryRun(label, result, request, invariants) {
-  const steps = result.frame_steps;
-  return { label, request, count: steps.length, describe(i) {
-    const k = steps[i];
+  return { label, request, describe(frame, t) {
+    const k = t === 0 ? 0 : result.steps.findIndex((s) => s.t === t) + 1;
+    const when = `t = ${Number(t.toPrecision(6))} (frame ${frame})`;
+    if (k === 0 && t !== 0) return when;
     const errors = invariants.map((name) => {
       const value = k ? result.steps[k - 1][name] : result[`initial_${name}`];
       const short = entry('invariant', name).short;
       return `${short} \u2212 ${short}(0) = ${fmtExp(value - result[`initial_${name}`])}`;
     });
-    return `step ${k}, t = ${Number(result.frame_times[i].toPrecision(6))}: ${errors.join(', ')}`;
+    return `step ${k}, ${when}: ${errors.join(', ')}`;
   } };
 }
 
