@@ -1,6 +1,6 @@
 // Click-to-complete time of every dashboard panel with its default form: from the click on Run until the run
-// has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (frames, heatmap,
-// basin PNG); for the stability and basin maps also the plan's estimate made before Run. Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
+// has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (heatmap, basin PNG,
+// every frame of a motion); for the stability and basin maps also the plan's estimate made before Run. Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
 // the machine's load average before and after, since the machine is shared. With a screenshot directory it then
 // saves every panel's first screen before and after its defaults run at 1440x900 and 390x844
 // (docs/screenshots/ holds these).
@@ -19,7 +19,7 @@ watchdog(1_800_000);
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const load = () => loadavg().map((x) => x.toFixed(2)).join(' ');
 const PANELS = [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Basins', 'basins'],
-  ['Speed vs accuracy', 'speed']];
+  ['Speed vs accuracy', 'speed'], ['Motion', 'motion']];
 
 // The panels that plan before Run (stability map, basins): waits for the plan's estimate and returns it in
 // seconds (null for the other panels).
@@ -39,7 +39,9 @@ async function clickToComplete(page, id) {
     const f = document.querySelector(`#${panel} form.controls`);
     if (f.getAttribute('aria-busy') === 'true') return 0;
     const pictures = [...document.querySelectorAll(`#${panel} img[src]`)].filter((img) => img.offsetParent !== null);
-    return pictures.every((img) => img.complete && img.naturalWidth > 0) ? performance.now() : 0;
+    const motions = [...document.querySelectorAll(`#${panel} figure.motion`)].filter((f) => f.offsetParent !== null);
+    return pictures.every((img) => img.complete && img.naturalWidth > 0) && motions.every((f) => f.dataset.frames)
+      ? performance.now() : 0;
   }, id, { polling: 'raf', timeout: 600_000 });
   const ms = (await done.jsonValue()) - t0;
   const error = await form.locator('.form-error').innerText();

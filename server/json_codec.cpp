@@ -4,6 +4,7 @@
 #include "core/group_registry.hpp"
 #include "core/problems.hpp"
 #include "core/user_field/program.hpp"
+#include "core/user_field/syntax.hpp"
 #include "core/validation.hpp"
 
 #include <algorithm>
@@ -480,7 +481,15 @@ Request read_request(const json& given, fields::Route route, const Limits& limit
     r.family_bounds_n = std::find(names.begin(), names.end(), name) != names.end() &&
                         group_family(name).max_index().has_value();
   }
-  read_object(body, "", fields::fields_of(route), request, r);
+  try {
+    read_object(body, "", fields::fields_of(route), request, r);
+  } catch (const RequestError& e) {
+    // A parameter's expression is evaluated as it is read, before the program compiles; a program that does not
+    // even parse is the first thing to fix, so its error is the one reported.
+    if (!e.field().starts_with("parameters.") || !body.contains("g") || !body["g"].is_string()) throw;
+    (void)user_field::parse(body["g"].get_ref<const std::string&>());
+    throw;
+  }
   if (part<ProblemSpec>(request)->g && body.contains("problem") && !body["problem"].is_null())
     throw RequestError(RequestError::Kind::unprocessable, "g",
                        "give either g (your own field) or problem (a built-in one), not both");

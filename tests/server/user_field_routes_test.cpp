@@ -67,6 +67,18 @@ TEST_F(UserFieldRoutes, ProgramFaultsAnswer422WithLineAndColumn) {
   ASSERT_TRUE(bad_value);
   EXPECT_EQ(bad_value->status, 400);
   EXPECT_EQ(json::parse(bad_value->body)["error"]["field"], "parameters.J");
+  // A bad parameter expression and a program that does not parse: the program's own error comes first, and once
+  // the program parses, the parameter's.
+  auto unparsed = c.Post("/api/v1/solve", R"({"g":"a = J;\ng = y - * y'","parameters":{"J":"2 *"},"h":0.5})", "application/json");
+  ASSERT_TRUE(unparsed);
+  EXPECT_EQ(unparsed->status, 422);
+  const json first = json::parse(unparsed->body)["error"];
+  EXPECT_EQ(first["field"], "g");
+  EXPECT_EQ(first["line"], 2);
+  auto parsed = c.Post("/api/v1/solve", R"({"g":"a = J;\ng = y - y'","parameters":{"J":"2 *"},"h":0.5})", "application/json");
+  ASSERT_TRUE(parsed);
+  EXPECT_EQ(parsed->status, 422);
+  EXPECT_EQ(json::parse(parsed->body)["error"]["field"], "parameters.J");
 }
 
 // The language's limits as HTTP answers: a workspace beyond the per-request budget is 413 naming g, a parameter

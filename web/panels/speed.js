@@ -176,7 +176,7 @@ export function createSpeedPanel(root) {
         invariantFigs[name].hidden = false;
       }
       tableBox.replaceChildren(integrateTable(runs, invariants));
-      trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
+      await trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
         { ...request, kind: 'integrate', frames: MOTION_FRAMES }, invariants)));
       live.textContent = `Done: ${timed}, ${runs.length} invariant runs.`;
     });
