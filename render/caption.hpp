@@ -14,8 +14,13 @@ struct Caption {
   std::string subtitle;
 };
 
-// The caption's lines for a picture `width` pixels wide: the title, then the subtitle's.
-std::vector<std::string> caption_lines(const Caption& caption, int width);
+// The caption's lines for a picture `width` pixels wide: the title's (wrapped between words where the picture is
+// too narrow: a phone's), then the subtitle's (wrapped between facts).
+struct CaptionLines {
+  std::vector<std::string> title;
+  std::vector<std::string> subtitle;
+};
+CaptionLines caption_lines(const Caption& caption, int width);
 // The band's height in pixels (0 for an empty caption).
 int caption_height(const Caption& caption, int width);
 // Draws the caption at the top of the canvas and shifts what is drawn after it below the band.

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 import { staleVendored } from './vendor.mjs';
 
 const { binary, webRoot, shots } = testArguments('dashboard.test.mjs');
@@ -23,10 +23,7 @@ before(async () => {
   server = await startServer(binary, webRoot, { flags: ['--max-streams', '16'] });
   base = server.base;
   browser = await launchChromium(chromium);
-  page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
-  page.setDefaultTimeout(60_000);  // the sanitizer build under a parallel ctest is slow, not wrong
-  page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
-  page.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
+  page = await openPage(browser, { width: 1280, height: 860 }, consoleErrors);
   page.on('request', (r) => !/^(blob|data):/.test(r.url()) && !r.url().startsWith(base) && external.push(r.url()));
   // Whatever the server's Content-Security-Policy refuses (an inline style, an image source) is reported here.
   await page.exposeFunction('reportCspViolation', (v) => cspViolations.push(v));
@@ -632,9 +629,7 @@ test('screenshots of every panel at 1440x900 and 390x844', async () => {
 });
 
 test('on a touch phone a first tap shows a cell, a second tap opens it', async () => {
-  const phone = await browser.newPage({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
-  phone.setDefaultTimeout(60_000);
-  phone.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
+  const phone = await openPage(browser, { width: 390, height: 844 }, consoleErrors, { console: false, hasTouch: true, isMobile: true });
   await phone.goto(base + '/#stability');
   const panel = phone.locator('#stability');
   for (const [name, v] of [['n_lo', '2'], ['n_hi', '3'], ['k_lo', '0'], ['k_hi', '1']]) {

@@ -114,3 +114,14 @@ export async function sameMotionFrame(page, id, sentBody) {
   if (result.differing) throw new Error(`#${id} frame ${result.upto}: ${result.differing} values differ from the API's still`);
   return result.upto;
 }
+
+// A page whose uncaught exceptions and console errors are pushed onto errors (each test asserts none, or only
+// those it caused). timeoutMs: the locators' default wait, long because a sanitizer build beside a parallel ctest
+// is slow, not wrong. console: false leaves console errors to the caller (which filters the expected ones).
+export async function openPage(browser, viewport, errors, { timeoutMs = 60_000, console = true, ...options } = {}) {
+  const page = await browser.newPage({ viewport, ...options });
+  page.setDefaultTimeout(timeoutMs);
+  page.on('pageerror', (e) => errors.push(e.stack ?? String(e)));
+  if (console) page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  return page;
+}

@@ -6,7 +6,7 @@
 // times its work-precision request several times and shows medians; coinciding curves and the figures say so.
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('plan.test.mjs');
 watchdog(150_000);
@@ -24,9 +24,7 @@ before(async () => {
   [plain, limited, capped] = await Promise.all([startServer(binary, webRoot),
     startServer(binary, webRoot, { flags: LIMITED }), startServer(binary, webRoot, { flags: CAPPED })]);
   browser = await launchChromium(chromium);
-  page = await browser.newPage({ viewport: { width: 1280, height: 860 } });
-  page.setDefaultTimeout(60_000);  // the sanitizer build under a parallel ctest is slow, not wrong
-  page.on('pageerror', (e) => errors.push(e.stack ?? String(e)));
+  page = await openPage(browser, { width: 1280, height: 860 }, errors, { console: false });
   // The limited server stops a sweep or map after 1 s with a 504, which the panel reports ("this takes minutes");
   // on a slow (sanitizer) build a probe can meet it, and Chromium logs every non-2xx answer as an error anyway.
   const deadline = (m) => /status of 504/.test(m.text()) && /\/api\/v1\/(sweep|basins)\b/.test(m.location().url ?? '');

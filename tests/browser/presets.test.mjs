@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('presets.test.mjs');
 watchdog(880_000);  // Figures 5.1 and 5.2 are two full sweeps: minutes under the sanitizers
@@ -20,10 +20,8 @@ before(async () => {
   const { chromium } = await loadPlaywright();
   base = (await startServer(binary, webRoot)).base;
   browser = await launchChromium(chromium);
-  page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
-  page.setDefaultTimeout(120_000);  // Figure 5.1 is a 882-cell sweep; the sanitizer build is slow, not wrong
-  page.on('pageerror', (e) => errors.push(e.stack ?? String(e)));
-  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  // Figure 5.1 is a 882-cell sweep: minutes in the sanitizer build.
+  page = await openPage(browser, { width: 1440, height: 900 }, errors, { timeoutMs: 120_000 });
 });
 after(stopAll);
 
@@ -35,7 +33,7 @@ const finished = (id) => page.waitForFunction((panel) => {
 // Opens an address and waits until the panel it names has run by itself: returns the ms from load to result.
 async function openWithResult(href) {
   let runs = 0;
-  const count = (r) => { if (/\/api\/v1\/(solve|sweep|work-precision)$/.test(new URL(r.url()).pathname)) runs += 1; };
+  const count = (r) => { if (/\/api\/v1\/(solve|sweep|work-precision|integrate)$/.test(new URL(r.url()).pathname)) runs += 1; };
   page.on('request', count);
   await page.goto('about:blank');
   const t0 = Date.now();
@@ -167,7 +165,8 @@ async function saved(panel, chartId, kind) {
 
 test('every chart saves as PNG and SVG', async () => {
   const charts = { solve: ['solve-chart'], compare: ['compare-time-chart', 'compare-chart'],
-    speed: ['work-precision-chart', 'energy-chart'] };
+    speed: ['work-precision-chart', 'energy-chart'], motion: ['motion-state', 'motion-drift'] };
+  const linear = new Set(['motion-state']);  // omega(t) is signed: a linear axis
   for (const [id, ids] of Object.entries(charts)) {
     const { panel } = await openWithResult(`/?run=1#${id}`);
     for (const chartId of ids) {
@@ -185,7 +184,8 @@ test('every chart saves as PNG and SVG', async () => {
       }, svg);
       assert.equal(parsed.error, undefined, `${chartId}: ${parsed.error}`);
       assert.equal(parsed.series, series, `${chartId}: one line per series`);
-      assert.ok(parsed.texts.some((t) => /^1e-?\d+$/.test(t)), `${chartId}: log tick labels in the SVG`);
+      if (linear.has(chartId)) assert.ok(parsed.texts.some((t) => /^-?\d+(\.\d+)?$/.test(t)), `${chartId}: tick labels in the SVG`);
+      else assert.ok(parsed.texts.some((t) => /^1e-?\d+$/.test(t)), `${chartId}: log tick labels in the SVG`);
     }
   }
   assert.deepEqual(errors, []);

@@ -5,7 +5,7 @@
 // deprecated field marked.
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('reference.test.mjs');
 watchdog(90_000);
@@ -16,9 +16,7 @@ before(async () => {
   const { chromium } = await loadPlaywright();
   server = await startServer(binary, webRoot);
   browser = await launchChromium(chromium);
-  page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
-  page.on('pageerror', (e) => errors.push(e.stack ?? String(e)));
-  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  page = await openPage(browser, { width: 1200, height: 900 }, errors);
 });
 after(stopAll);
 

@@ -7,7 +7,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('speed_defaults.test.mjs');
 watchdog(280_000);
@@ -21,10 +21,7 @@ before(async () => {
   const spec = await (await fetch(base + '/openapi.json')).json();
   NOMINAL = Object.fromEntries(spec['x-lienewton'].enums.integrator.map((e) => [e.value, e.order]));
   const browser = await launchChromium(chromium);
-  page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
-  page.setDefaultTimeout(120_000);
-  page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
-  page.on('pageerror', (e) => consoleErrors.push(e.stack ?? String(e)));
+  page = await openPage(browser, { width: 1440, height: 900 }, consoleErrors, { timeoutMs: 120_000 });
   await page.goto(base + '/');
   await page.locator('#server-state[data-ok="true"]').waitFor();
 });

@@ -45,7 +45,9 @@ jq -e '.status == "converged" and (.steps | length) == 400' "$dir/long.json" > /
   || { echo "integrate t_end 200: $(head -c 300 "$dir/long.json")"; exit 1; }
 "$bin" render heatmap --methods newton-group --n 3,4 --h 1,2 --format svg < /dev/null > "$dir/heatmap.svg"
 grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' "$dir/heatmap.svg" || { echo "render heatmap --format svg: not SVG"; exit 1; }
-grep -q '>Where each method converges: paper-linear on SO(N)</text>' "$dir/heatmap.svg" || { echo "SVG without its title"; exit 1; }
+# The title, wrapped between words on so narrow a picture: its <text> lines read as one.
+grep -o '<text[^>]*>[^<]*</text>' "$dir/heatmap.svg" | sed 's/<[^>]*>//g' | tr '\n' ' ' \
+  | grep -q 'Where each method converges: paper-linear on SO(N)' || { echo "SVG without its title"; exit 1; }
 # The heavy top by flags (its parameters as a JSON object), its invariants' drifts, and their picture.
 "$bin" integrate --problem heavy-top --group SOxR --integrator dirk-cg2 --h 0.0078125 --t-end 0.0625 \
   --heavy-top '{"mass":10}' < /dev/null > "$dir/top.json"

@@ -22,24 +22,33 @@ const Caption kCaption{"Where each method converges: paper-linear on SO(N)",
                        "N = 2\u20263 \u00b7 h = 2\u207b\u00b9\u20262 \u00b7 differential exact \u00b7 tol 1e-13 \u00b7 "
                        "at most 100 iterations \u00b7 colour: iterations"};
 
-std::string joined(const std::vector<std::string>& lines) {
+std::string joined(const std::vector<std::string>& lines, const std::string& separator) {
   std::string out;
-  for (std::size_t i = 1; i < lines.size(); ++i) out += (i > 1 ? " \u00b7 " : "") + lines[i];
+  for (std::size_t i = 0; i < lines.size(); ++i) out += (i ? separator : "") + lines[i];
   return out;
 }
 
 TEST(Caption, WrapsTheSubtitleBetweenFactsOnlyWhereTheWidthIsShort) {
-  const std::vector<std::string> wide = caption_lines(kCaption, 2000);
-  ASSERT_EQ(wide.size(), 2u);
-  EXPECT_EQ(wide[0], kCaption.title);
-  EXPECT_EQ(wide[1], kCaption.subtitle);
-  const std::vector<std::string> narrow = caption_lines(kCaption, 300);
-  ASSERT_GT(narrow.size(), 2u);
-  EXPECT_EQ(narrow[0], kCaption.title);
-  EXPECT_EQ(joined(narrow), kCaption.subtitle);  // every fact kept, in order
-  for (std::size_t i = 1; i < narrow.size(); ++i) EXPECT_LE(Font::instance().width(narrow[i], TextSize::small), 280.0f) << narrow[i];
+  const CaptionLines wide = caption_lines(kCaption, 2000);
+  ASSERT_EQ(wide.title.size(), 1u);
+  ASSERT_EQ(wide.subtitle.size(), 1u);
+  EXPECT_EQ(wide.title[0], kCaption.title);
+  EXPECT_EQ(wide.subtitle[0], kCaption.subtitle);
+  const CaptionLines narrow = caption_lines(kCaption, 300);
+  ASSERT_GT(narrow.subtitle.size(), 1u);
+  EXPECT_EQ(joined(narrow.subtitle, " \u00b7 "), kCaption.subtitle);  // every fact kept, in order
+  for (const std::string& line : narrow.subtitle) EXPECT_LE(Font::instance().width(line, TextSize::small), 280.0f) << line;
   EXPECT_GT(caption_height(kCaption, 300), caption_height(kCaption, 2000));
   EXPECT_EQ(caption_height(Caption{}, 500), 0);
+}
+
+// A title wider than a phone's picture is wrapped between words, none lost, each line within the picture.
+TEST(Caption, WrapsALongTitleBetweenWords) {
+  const CaptionLines narrow = caption_lines(kCaption, 240);
+  ASSERT_GT(narrow.title.size(), 1u);
+  EXPECT_EQ(joined(narrow.title, " "), kCaption.title);
+  for (const std::string& line : narrow.title) EXPECT_LE(Font::instance().width(line, TextSize::large), 220.0f) << line;
+  EXPECT_GT(caption_height(kCaption, 240), caption_height(kCaption, 300));
 }
 
 TEST(Caption, MicroSecondsAreSpelledWithMu) { EXPECT_TRUE(Font::instance().has_glyph(U'\u00b5')); }

@@ -79,10 +79,11 @@ export function createMotionPanel(root) {
   const picker = el('select', { id: 'motion-components', multiple: true, size: 5 });
   let components = [];  // stateComponents of the last run
   const driftBox = el('div', { class: 'chart', id: 'motion-drift' });
-  const charts = el('div', { class: 'result-row', hidden: true, id: 'motion-charts' },
+  const exactNote = el('p', { class: 'hint', id: 'motion-exact', hidden: true });
+  const charts = el('div', { class: 'chart-pair', hidden: true, id: 'motion-charts' },
     el('figure', {}, el('figcaption', {}, 'The state against time'),
       el('div', { class: 'field' }, el('label', { for: picker.id }, 'Plot (ctrl-click for several)'), picker), stateBox),
-    el('figure', {}, el('figcaption', {}, 'Invariants\u2019 drift |I(t) \u2212 I(0)| / scale'), driftBox));
+    el('figure', {}, el('figcaption', {}, 'Invariants\u2019 drift |I(t) \u2212 I(0)| / scale'), driftBox, exactNote));
   const start = runner(form, live);
   let last = null;  // { request, integration }
 
@@ -124,8 +125,14 @@ export function createMotionPanel(root) {
         const scale = integration[`${key}_scale`] || Math.abs(first) || 1;
         return { label: name, values: integration.steps.map((s) => (s[key] - first) / scale) };
       });
-    if (runs.length) invariantChart(driftBox, stepTimes, runs, 'drift', '|I(t) \u2212 I(0)| / scale');
-    else driftBox.replaceChildren(el('p', { class: 'hint' }, 'This problem reports no invariants.'));
+    // An invariant the method keeps exactly (the symmetric top's axial spin) has no point on a log axis: said,
+    // not drawn as a missing line.
+    const drifting = runs.filter((r) => r.values.some((v) => v !== 0));
+    const exact = runs.filter((r) => !drifting.includes(r)).map((r) => r.label);
+    exactNote.textContent = exact.length ? `Kept exactly (drift 0 at every step): ${exact.join(', ')}.` : '';
+    exactNote.hidden = !exact.length;
+    if (drifting.length) invariantChart(driftBox, stepTimes, drifting, 'drift', '|I(t) \u2212 I(0)| / scale');
+    else driftBox.replaceChildren(el('p', { class: 'hint' }, runs.length ? 'No invariant drifts.' : 'This problem reports no invariants.'));
   }
 
   async function run() {
