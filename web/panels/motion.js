@@ -3,7 +3,7 @@
 // motion_player.js. Beside it, the state against time (the body angular velocity) and each invariant's drift,
 // from the integrate route's frames and steps.
 import { postJSON } from '../shared/api.js';
-import { invariantChart, stateChart } from '../shared/chart.js';
+import { chartMessage, invariantChart, stateChart } from '../shared/chart.js';
 import { schemas } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, select } from '../shared/fields.js';
@@ -103,8 +103,7 @@ export function createMotionPanel(root) {
   function drawState() {
     const picked = chosen();
     if (!picked.length) {
-      stateBox.replaceChildren(el('p', { class: 'hint' }, components.length ? 'Choose what to plot.' : 'Nothing in the state moves.'));
-      delete stateBox.dataset.series;
+      chartMessage(stateBox, components.length ? 'Choose what to plot.' : 'Nothing in the state moves.');
       return;
     }
     stateChart(stateBox, last.integration.frame_times, picked.flatMap((c) => c.series), stateAxis(picked));
@@ -132,7 +131,7 @@ export function createMotionPanel(root) {
     exactNote.textContent = exact.length ? `Kept exactly (drift 0 at every step): ${exact.join(', ')}.` : '';
     exactNote.hidden = !exact.length;
     if (drifting.length) invariantChart(driftBox, stepTimes, drifting, 'drift', '|I(t) \u2212 I(0)| / scale');
-    else driftBox.replaceChildren(el('p', { class: 'hint' }, runs.length ? 'No invariant drifts.' : 'This problem reports no invariants.'));
+    else chartMessage(driftBox, runs.length ? 'No invariant drifts.' : 'This problem reports no invariants.');
   }
 
   async function run() {

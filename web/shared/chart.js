@@ -5,6 +5,7 @@ import uPlot from '../vendor/uPlot.esm.js';
 import { SERIES_STYLES, fmtExp, fmtH, fmtSeconds, superscript } from './labels.js';
 import { spreadText } from './repeats.js';
 import { exportBar } from './chart_export.js';
+import { el } from './dom.js';
 
 // Labels only every k-th decade so that long ranges (1e0 .. 1e-16) stay readable on small charts.
 function logAxisValues(u, splits, axisIdx) {
@@ -46,15 +47,32 @@ function decades(u, min, max) {
 
 const mounted = new WeakMap(); // container -> { plot, observer } of the chart it shows now
 
-// Replaces the container's chart. The old one is destroyed: a detached uPlot that still resizes
-// recomputes its axes with no data, and its log-axis tick loop then never ends.
-function mount(container, opts, data) {
+// Destroys the container's chart, if any: a detached uPlot that still resizes recomputes its axes with no data,
+// and its log-axis tick loop then never ends.
+function unmount(container) {
   const old = mounted.get(container);
   if (old) {
     old.observer.disconnect();
     old.plot.destroy();
+    mounted.delete(container);
   }
   container.replaceChildren();
+  container.classList.remove('chart-message');
+}
+
+// A sentence where a chart would be (nothing to draw): the chart, its Save buttons and its series count go.
+export function chartMessage(container, text) {
+  unmount(container);
+  if (container.nextElementSibling?.classList.contains('chart-export')) container.nextElementSibling.remove();
+  delete container.dataset.series;
+  delete container.dataset.points;
+  container.classList.add('chart-message');
+  container.append(el('p', { class: 'hint' }, text));
+}
+
+// Replaces the container's chart.
+function mount(container, opts, data) {
+  unmount(container);
   const width = () => Math.max(280, container.clientWidth);
   const plot = new uPlot({ ...opts, width: width(), height: opts.height ?? 300 }, data, container);
   const observer = new ResizeObserver(() => {
