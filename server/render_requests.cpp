@@ -315,6 +315,7 @@ struct Shown {
   Eigen::MatrixXd start;
   render::Caption caption;
   bool iterates = false;
+  int frames = 0;  // an integration's frames as asked for (the states may be denser: path_samples)
 };
 
 // What the picture draws: a solve or an integration, told apart by kind or by a field only integrate requests have.
@@ -328,7 +329,10 @@ bool takes_integration(json& request) {
 }
 
 // Runs the request the picture draws (an integration with `default_frames` states when frames is absent).
-Shown run_shown(json& request, bool integration, const Limits& limits, const RenderHooks& hooks, int default_frames) {
+// The solve's iterates, or the integration's frames + 1 states; path_samples times as many (within the frames
+// limits) when a picture draws a path through more states than it shows.
+Shown run_shown(json& request, bool integration, const Limits& limits, const RenderHooks& hooks, int default_frames,
+                int path_samples = 1) {
   Shown shown;
   if (!integration) {
     SolveRequest r = solve_request_from_json(request, limits);
@@ -354,6 +358,8 @@ Shown run_shown(json& request, bool integration, const Limits& limits, const Ren
   IntegrateRequest r = integrate_request_from_json(request, limits);
   check_bodies(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
+  shown.frames = r.frames;
+  r.frames = std::max(r.frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, path_samples * r.frames}));
   r.reference = false;  // the picture needs no global error
   before_work(hooks);
   validate(r);
@@ -426,13 +432,8 @@ std::vector<unsigned char> render_motion(json request, const Limits& limits, ren
   // limit allows): a fast spin's loops stay round between two frames.
   constexpr int kPathSamples = 8;
   const bool integration = takes_integration(request);
-  int frames = kMotionFrames;
-  if (integration && request.contains("frames")) {
-    (void)integrate_request_from_json(request, limits);  // frames' own checks, named, before the change below
-    frames = request["frames"].get<int>();
-  }
-  if (integration) request["frames"] = std::max(frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, kPathSamples * frames}));
-  const Shown shown = run_shown(request, integration, limits, hooks, kMotionFrames);
+  const Shown shown = run_shown(request, integration, limits, hooks, kMotionFrames, kPathSamples);
+  const int frames = integration ? shown.frames : kMotionFrames;
   // The states shown: `frames` + 1 evenly spaced (a solve's: kMotionFrames + 1 of its iterates, so that 10000
   // iterations cost no more to draw than 100), first and last included; the file's metadata names each one's t or n.
   std::vector<std::size_t> states;
