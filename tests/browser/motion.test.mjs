@@ -9,7 +9,7 @@ import { after, before, test } from 'node:test';
 import { launchChromium, loadPlaywright, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('motion.test.mjs');
-watchdog(150_000);
+watchdog(240_000);
 let browser; let server;
 const errors = [];
 
@@ -159,7 +159,7 @@ test('screenshots of every scene at 1440x900 and 390x844', { skip: Boolean(proce
     const page = await openMotion({ width, height });
     for (const problem of ['heavy-top', 'rigid-body', 'stiff-body', 'chain']) {
       await page.locator('#motion select[name="problem"]').selectOption(problem);
-      await page.locator('#motion input[name="t_end"]').fill({ 'rigid-body': '10', chain: '0.5' }[problem] ?? '2');
+      await page.locator('#motion input[name="t_end"]').fill({ 'rigid-body': '10', 'stiff-body': '0.5', chain: '0.5' }[problem] ?? '2');
       const { frames } = await run(page);
       await page.locator('#motion-figure-slider').fill(String(Math.floor(frames / 2)));
       await page.locator('#motion .output').screenshot({ path: `${shots}/scene-${problem}-${width}x${height}.png` });
