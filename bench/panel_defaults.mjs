@@ -2,8 +2,8 @@
 // has ended (the form is no longer aria-busy) and every picture the panel shows has loaded (heatmap, basin PNG,
 // every frame of a motion); for the stability and basin maps also the plan's estimate made before Run. Each panel runs `repetitions` times in one page at 1440x900; prints the median, the spread and
 // the machine's load average before and after, since the machine is shared. With a screenshot directory it then
-// saves every panel's first screen before and after its defaults run at 1440x900 and 390x844
-// (docs/screenshots/ holds these).
+// saves every panel's first screen before and after its defaults run at 1440x900 and 390x844, and every scene of
+// the Motion panel at both sizes (docs/screenshots/ holds these).
 //   node bench/panel_defaults.mjs <server-binary> <web-root> [repetitions=3] [screenshot-dir]
 import { loadavg } from 'node:os';
 import { mkdirSync } from 'node:fs';
@@ -18,6 +18,9 @@ if (!binary || !webRoot) {
 watchdog(1_800_000);
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const load = () => loadavg().map((x) => x.toFixed(2)).join(' ');
+// The Motion panel's scenes and their end times: long enough to show the motion, short enough to draw in seconds
+// (the stiff body takes 2^13 steps per unit of time).
+const SCENES = [['heavy-top', '2'], ['rigid-body', '10'], ['stiff-body', '0.5'], ['chain', '0.5']];
 const PANELS = [['Solve', 'solve'], ['Compare', 'compare'], ['Stability map', 'stability'], ['Basins', 'basins'],
   ['Speed vs accuracy', 'speed'], ['Motion', 'motion']];
 
@@ -86,6 +89,22 @@ if (shots) {
       await fresh.screenshot({ path: join(shots, `${id}-${w}x${h}.png`) });
     }
     await fresh.close();
+  }
+  // Every scene of the Motion panel at its middle frame, the panel's output only (scene-<problem>-<size>.png).
+  for (const [w, h] of [[1440, 900], [390, 844]]) {
+    const page = await browser.newPage({ viewport: { width: w, height: h } });
+    await page.goto(`${server.base}/#motion`);
+    await page.locator('#server-state[data-ok="true"]').waitFor();
+    for (const [problem, tEnd] of SCENES) {
+      await page.locator('#motion select[name="problem"]').selectOption(problem);
+      await page.locator('#motion input[name="t_end"]').fill(tEnd);
+      const ms = await clickToComplete(page, 'motion');
+      const frames = Number(await page.locator('#motion-figure').getAttribute('data-frames'));
+      await page.locator('#motion-figure-slider').fill(String(Math.floor(frames / 2)));
+      await page.locator('#motion .output').screenshot({ path: join(shots, `scene-${problem}-${w}x${h}.png`) });
+      console.log(`motion scene ${problem}, t_end ${tEnd}, at ${w}x${h}: ${ms.toFixed(0)} ms click to complete`);
+    }
+    await page.close();
   }
 }
 await stopAll();

@@ -93,29 +93,46 @@ export function motionPlayer(id, { caption, at = 'first' } = {}) {
     const blob = await postBlob('/api/v1/render/motion', { ...shown.request, ...view, width: size, height: size,
       frame_ms: shown.frameMs }, 'image/webp', { signal });
     const bytes = new Uint8Array(await blob.arrayBuffer());
-    pause();
-    for (const frame of frames) frame.close();
-    frames = [];
-    times = frameTimes(bytes);
-    canvas.width = size;
-    canvas.height = size;
     if (typeof ImageDecoder === 'undefined') {
+      commit([], bytes, size);
       const img = el('img', { src: URL.createObjectURL(blob), alt: 'The motion, animated', width: size, height: size });
       canvas.replaceWith(img);
       return;
     }
+    // Decoded aside and shown only if no newer motion was asked for meanwhile (the signal says): two runs or
+    // views in quick succession never mix their frames.
+    const decoded = [];
     const decoder = new ImageDecoder({ data: bytes, type: 'image/webp' });
-    await decoder.tracks.ready;
-    const count = decoder.tracks.selectedTrack.frameCount;
-    for (let i = 0; i < count; ++i) {
-      const { image } = await decoder.decode({ frameIndex: i });
-      frames.push(await createImageBitmap(image));
-      image.close();  // a decoded VideoFrame holds its memory until closed, not until collected
+    try {
+      await decoder.tracks.ready;
+      const count = decoder.tracks.selectedTrack.frameCount;
+      for (let i = 0; i < count; ++i) {
+        signal?.throwIfAborted();
+        const { image } = await decoder.decode({ frameIndex: i });
+        decoded.push(await createImageBitmap(image));
+        image.close();  // a decoded VideoFrame holds its memory until closed, not until collected
+      }
+      signal?.throwIfAborted();
+    } catch (e) {
+      for (const frame of decoded) frame.close();
+      throw e;
+    } finally {
+      decoder.close();
     }
-    decoder.close();
-    slider.max = String(frames.length - 1);
-    slider.disabled = false;
-    play.disabled = false;
+    commit(decoded, bytes, size);
+  }
+
+  // The decoded frames become the ones shown.
+  function commit(decoded, bytes, size) {
+    pause();
+    for (const frame of frames) frame.close();
+    frames = decoded;
+    times = frameTimes(bytes);
+    canvas.width = size;
+    canvas.height = size;
+    slider.max = String(Math.max(0, frames.length - 1));
+    slider.disabled = !frames.length;
+    play.disabled = !frames.length;
     figure.dataset.frames = String(frames.length);
   }
 
@@ -155,14 +172,14 @@ export function motionPlayer(id, { caption, at = 'first' } = {}) {
     // describe(k, t) says what frame k, at time (or iterate) t, shows (default: its t or n and the frame).
     async load(request, { signal, frameMs = DEFAULT_FRAME_MS, describe = null } = {}) {
       redraw?.abort();
-      shown = { request, frameMs, describe };
+      const mine = shown = { request, frameMs, describe };
       delete figure.dataset.frames;
       figure.hidden = false;  // measured for the picture's width
       note.textContent = caption;
       try {
         await fetchFrames(signal);
       } catch (e) {
-        figure.hidden = true;
+        if (shown === mine) figure.hidden = true;  // not a newer load's figure
         throw e;
       }
       show(at === 'last' ? frames.length - 1 : 0);
