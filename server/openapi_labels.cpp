@@ -13,6 +13,7 @@
 #include "render/options.hpp"
 #include "render/series_style.hpp"
 #include "server/output_limits.hpp"
+#include "server/render_requests.hpp"
 
 namespace lienewton::service {
 namespace {
@@ -92,6 +93,12 @@ json openapi_labels(const ServerOptions& options) {
     for (Invariant v : invariants_of(kAllProblems[i])) invariants.push_back(std::string(to_string(v)));
     problems[i]["invariants"] = std::move(invariants);
   }
+  // Where each registered group draws bodies (motion, frames): "any" n, or the n that do (SO: 3).
+  json groups = json::array();
+  for (const std::string& name : registered_group_names()) {
+    const std::optional<std::vector<int>> at = bodies_at(group_family(name));
+    groups.push_back({{"value", name}, {"bodies_n", at ? json(*at) : json("any")}});
+  }
   json statuses = entries(kAllStatuses);
   for (std::size_t i = 0; i < std::size(kAllStatuses); ++i) statuses[i]["color"] = status_css(kAllStatuses[i]);
   return {{"enums",
@@ -114,6 +121,7 @@ json openapi_labels(const ServerOptions& options) {
                       {"basin_roots", basin_root_colors()}, {"basin_darkest", render::kBasinDarkest},
                       {"rate_range", {render::kRateColorLo, render::kRateColorHi}},
                       {"rate_outlier_dot", css(render::kOutlierDotColor)}}},
+          {"groups", std::move(groups)},
           {"series_styles", series_styles()},
           // A basin map of k methods may have size^2 k basin_pixel_values <= max_values.
           {"output_limits", {{"max_values", options.output.max_values}, {"basin_pixel_values", kBasinPixelValues},

@@ -82,12 +82,13 @@ void check_bodies(const ProblemSpec& p) {
   const GroupFamily& family = p.family();
   const std::string why =
       "rotation frames are drawn for groups with a rotation part (SO(3), SE(3), SOxR, SExR) or bodies (SExR^k): ";
-  const auto drawn = [&](int n) {
-    return !family.body_frames(n, family.random(n, 1)).empty();
-  };
-  if (drawn(p.n)) return;
+  if (draws_bodies(family, p.n)) return;
   // SO(3) has frames and SO(4) none: the index is what is wrong.
-  if (p.n != 3 && drawn(3)) throw ApiError(422, "unprocessable", "n", why + "n must be 3");
+  if (const std::optional<std::vector<int>> at = bodies_at(family); at && !at->empty()) {
+    std::string list;
+    for (int n : *at) list += (list.empty() ? "" : " or ") + std::to_string(n);
+    throw ApiError(422, "unprocessable", "n", why + "n must be " + list);
+  }
   throw ApiError(422, "unprocessable", "group", why + family.title(p.n) + " has none");
 }
 
@@ -398,6 +399,20 @@ void check_upto(int upto, std::size_t states) {
 }
 
 }  // namespace
+
+bool draws_bodies(const GroupFamily& family, int n) { return !family.body_frames(n, family.random(n, 1)).empty(); }
+
+std::optional<std::vector<int>> bodies_at(const GroupFamily& family) {
+  if (const std::optional<int> only = family.only_index()) {
+    if (draws_bodies(family, *only)) return std::nullopt;
+    return std::vector<int>{};
+  }
+  std::vector<int> at;
+  for (int n = 2; n <= kBodiesIndicesTried; ++n)
+    if (draws_bodies(family, n)) at.push_back(n);
+  if (at.size() == static_cast<std::size_t>(kBodiesIndicesTried - 1)) return std::nullopt;
+  return at;
+}
 
 std::vector<unsigned char> render_frames(json request, const Limits& limits, render::Renderer& renderer,
                                          const RenderHooks& hooks) {

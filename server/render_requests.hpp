@@ -2,10 +2,12 @@
 // Render requests, shared by the HTTP routes and the CLI: a solve/integrate/sweep request (or a finished
 // sweep) plus picture options -> PNG bytes. Transport-neutral: capacity, deadlines and metrics come in as hooks.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/fields.hpp"
+#include "core/group_registry.hpp"
 #include "server/json_codec.hpp"
 
 namespace lienewton::render { class Renderer; }
@@ -21,6 +23,13 @@ struct RenderHooks {
 
 // Thrown when keep_going returned false.
 struct RenderCancelled {};
+
+// Whether the group draws bodies (frames, motion) at index n: its body_frames of a seeded element are not empty.
+bool draws_bodies(const GroupFamily& family, int n);
+// The indices at which it does, for the dashboard's catalog: nullopt for every index it takes (SE(3), SExR^k),
+// else those among 2..kBodiesIndicesTried (SO(N): {3}; none: empty).
+inline constexpr int kBodiesIndicesTried = 8;
+std::optional<std::vector<int>> bodies_at(const GroupFamily& family);
 
 // Frames: a SolveRequest (n = 3, iterates drawn) or an IntegrateRequest (kind = "integrate", or any of
 // integrator/t_end/frames present; frames defaults to 16), plus width/height/azimuth_deg/elevation_deg and upto

@@ -671,13 +671,15 @@ test('the stability map shows a Newton variant and continuation beside the paper
   assert.equal(request.globalization, 'line-search');
   assert.equal(request.continuation, true);
   assert.equal(request.multistart, 16);
-  await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
   const { body: variant } = await api('/api/v1/sweep', request);
   const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false, multistart: 0 });
+  // Each cell as it streams in (the grid of the previous run is replaced; a sanitizer build is slow to fill it).
   for (const cell of variant.cells) {
     const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
+    await loc.and(panel.locator('[data-status]')).waitFor();
     assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
   }
+  await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
   // The variant is not the paper's method under another name: the cells differ (continued cells cost more
   // iterations in total, and some converge only continued).
   assert.ok(variant.cells.some((c, i) => c.status !== paper.cells[i].status || c.iterations !== paper.cells[i].iterations));

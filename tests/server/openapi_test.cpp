@@ -1,6 +1,7 @@
 // /openapi.json describes exactly the routes the server registers, and every documented route answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -291,6 +292,31 @@ TEST(OpenApi, DescriptionsReadTheConstants) {
 
 std::string css(render::Color c) {
   return "rgb(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")";
+}
+
+// The dashboard asks for a motion only where the catalog says the group has bodies: every registered group is
+// listed, SO(N) at N = 3 only (the rotations of space), the rigid-body groups at any n, a group without bodies (a
+// test's matrix group) at none; each as draws_bodies, which the route asks, says.
+TEST(OpenApi, GroupsSayWhereTheyDrawBodies) {
+  const json doc = json::parse(openapi_document(ServerOptions{}));
+  std::set<std::string> listed;
+  for (const json& group : doc["x-lienewton"]["groups"]) {
+    const std::string name = group["value"];
+    listed.insert(name);
+    if (name == "SO") {
+      EXPECT_EQ(group["bodies_n"], json::array({3}));
+    } else if (name == "SE" || name == "SOxR" || name == "SExR" || name == "SExR^k") {
+      EXPECT_EQ(group["bodies_n"], "any") << name;
+    }
+    const GroupFamily& family = group_family(name);
+    for (int n = 2; n <= service::kBodiesIndicesTried; ++n) {
+      if (family.only_index() && n != *family.only_index()) continue;
+      const bool listed_n = group["bodies_n"] == "any" || std::ranges::count(group["bodies_n"], json(n)) == 1;
+      EXPECT_EQ(service::draws_bodies(family, n), listed_n) << name << " n = " << n;
+    }
+  }
+  const std::vector<std::string> names = registered_group_names();
+  EXPECT_EQ(listed, std::set<std::string>(names.begin(), names.end()));
 }
 
 // The dashboard reads its words and colours from "x-lienewton": every value the API accepts or answers has a

@@ -1,7 +1,7 @@
 // The server's vocabulary, loaded once for every panel: the "x-lienewton" extension of /openapi.json holds a
 // label, a short label, a description and for some an explanation for each value of the API's enums (problem,
 // method, differential, integrator, linear_solver, globalization, stopping, predictor, branch, found_by, path_point, status,
-// heatmap_metric), the status colours and the heatmap renderer's colours.
+// heatmap_metric), the status colours, the heatmap renderer's colours, and where each group draws bodies (groups).
 // Nothing here is copied from the server, so a new method or status shows up with its own words.
 const response = await fetch('/openapi.json');
 if (!response.ok) throw new Error(`/openapi.json answered HTTP ${response.status}`);

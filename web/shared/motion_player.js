@@ -3,7 +3,7 @@
 // (ImageDecoder), so Play/Pause and the slider step through them with no new request; a drag on the picture turns
 // the camera, and the server draws the new view on release, at the same frame.
 import { postBlob } from './api.js';
-import { entry } from './catalog.js';
+import { catalog, entry } from './catalog.js';
 import { el } from './dom.js';
 import { fillSelect } from './form.js';
 import { imageWidth } from './image_width.js';
@@ -31,11 +31,13 @@ export function frameTimes(bytes) {
   return null;
 }
 
-// Whether a solve's iterates can be drawn as bodies: not on SO(N) for N other than 3, which has no rotation of
-// space (the server's 422 says so too; asking would only log a failed request). Every other group has bodies.
+// Whether a solve's iterates can be drawn as bodies, as the server's catalog says of the request's group (SO(N):
+// only at N = 3, the rotations of space): asking where it cannot would only log a failed request. A group the
+// catalog does not list is asked for, and the server says why not.
 export function drawsBodies(request) {
-  const group = request.g ? request.group ?? 'SO' : entry('problem', request.problem)?.group ?? 'SO';
-  return group !== 'SO' || request.n === 3;
+  const name = request.g ? request.group ?? 'SO' : entry('problem', request.problem)?.group ?? 'SO';
+  const bodies = catalog.groups?.find((g) => g.value === name)?.bodies_n ?? 'any';
+  return bodies === 'any' || bodies.includes(request.n);
 }
 
 // A time as the slider names it: n as it is, t to six significant digits (0.30000000000000004 is 0.3).
