@@ -150,3 +150,20 @@ test('your own g on SE(3): its bodies move, and the state chart plots the entrie
   await page.close();
   assert.deepEqual(errors, []);
 });
+
+// The heavy top written as a program on SO(3) x R^3 has an angular velocity too: its state's w = y(4:6,7).
+test('a program on SO(3) x R^3 plots its angular velocity', async () => {
+  const page = await openMotion({ width: 1440, height: 900 });
+  await page.locator('#motion select[name="problem"]').selectOption('heavy-top');
+  await page.locator('#motion summary', { hasText: 'Your own g(y)' }).click();
+  await page.locator('#motion').getByRole('button', { name: 'Edit the problem as a program' }).click();
+  await page.locator('#motion input[name="t_end"]').fill('0.25');
+  const { sent } = await run(page);
+  assert.equal(sent.group, 'SOxR');
+  assert.ok(sent.g);
+  assert.equal((await page.locator('#motion-components option').first().innerText()), '\u03c9 (body angular velocity)');
+  assert.deepEqual(await page.locator('#motion-components').evaluate((s) => [...s.selectedOptions].map((o) => o.value)), ['omega']);
+  assert.equal(await page.locator('#motion-state').getAttribute('data-series'), '3');
+  await page.close();
+  assert.deepEqual(errors, []);
+});

@@ -4,7 +4,7 @@
 // from the integrate route's frames and steps.
 import { postJSON } from '../shared/api.js';
 import { chartMessage, invariantChart, stateChart } from '../shared/chart.js';
-import { schemas } from '../shared/catalog.js';
+import { entry, schemas } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
@@ -18,11 +18,13 @@ const MECHANICS = ['heavy-top', 'rigid-body', 'stiff-body', 'chain'];
 // about 0.04 s): the animation's 100 frames over t = 2 would alias them into a zigzag.
 const CHART_FRAMES = 1000;
 
-// The state's angular velocity per frame: the heavy top's and the stiff body's w in their SO(3) x R^3 matrix
-// [[R, 0], [0, [[I, w], [0, 1]]]]; the free rigid body's w = I^-1 y^T m, from its parameters (or their defaults).
-function angularVelocity(problem, request, y) {
-  if (problem === 'heavy-top' || problem === 'stiff-body') return [y[3][6], y[4][6], y[5][6]];
-  if (problem !== 'rigid-body') return null;
+// The state's angular velocity per frame: on SO(3) x R^3 (the heavy top, the stiff body, or a program on SOxR) the
+// w of its matrix [[R, 0], [0, [[I, w], [0, 1]]]]; the free rigid body's w = I^-1 y^T m, from its parameters (or
+// their defaults).
+function angularVelocity(request, y) {
+  const group = request.g ? request.group : entry('problem', request.problem).group;
+  if (group === 'SOxR') return [y[3][6], y[4][6], y[5][6]];
+  if (request.g || request.problem !== 'rigid-body') return null;
   const defaults = schemas.RigidBody?.properties ?? {};
   const m = request.rigid_body?.momentum ?? defaults.momentum?.default ?? [0.6, 0.8, 0.5];
   const inertia = request.rigid_body?.inertia ?? defaults.inertia?.default ?? [1, 2, 3];
@@ -36,7 +38,7 @@ const INVARIANTS = [['energy', 'energy'], ['vertical_momentum', 'vertical moment
 // values }] } per choice.
 function stateComponents(request, integration) {
   const choices = [];
-  const w = integration.frames.map((y) => angularVelocity(request.problem, request, y));
+  const w = integration.frames.map((y) => angularVelocity(request, y));
   if (w.length && w.every((v) => v)) {
     choices.push({ key: 'omega', label: '\u03c9 (body angular velocity)',
       series: [0, 1, 2].map((k) => ({ label: `\u03c9${'\u2081\u2082\u2083'[k]}`, column: `omega_${k + 1}`,
