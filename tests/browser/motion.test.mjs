@@ -101,6 +101,13 @@ test('rigid body on a phone: its momentum on the sphere, then the chain', async 
   assert.equal(body.frames, 101, await page.locator('#motion .live').innerText());
   assert.equal(await page.locator('#motion-drift').getAttribute('data-series'), '1');  // energy only
   await playScrubTurn(page, body.sent, 30);
+  // The keyboard turns it too: ArrowLeft adds 15 degrees of azimuth, and the frame stays.
+  await page.locator('#motion-figure-canvas').focus();
+  const keyed = page.waitForRequest((r) => r.url().endsWith('/api/v1/render/motion'));
+  await page.keyboard.press('ArrowLeft');
+  assert.equal(JSON.parse((await keyed).postData()).azimuth_deg, 10);  // -5 after the drag, + 15
+  await page.waitForFunction(() => document.querySelector('#motion-figure').dataset.azimuth === '10');
+  assert.equal(await page.locator('#motion-figure').getAttribute('data-frame'), '30');
   const width = await page.evaluate(() => document.querySelector('#motion-figure-canvas').getBoundingClientRect().width);
   assert.ok(width <= 390, `the animation fits the phone (${width} px)`);
   await page.screenshot({ path: `${shots}/motion-rigid-body-390x844.png`, fullPage: true });
