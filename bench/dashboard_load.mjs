@@ -3,7 +3,7 @@
 // browser revalidates its cached files: 304s carry headers only).
 //   node bench/dashboard_load.mjs <server-binary> <web-root> [repetitions=7]
 import { resolve } from 'node:path';
-import { launchChromium, loadPlaywright, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
+import { launchChromium, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
 
 const [binary, webRoot, reps = '7'] = process.argv.slice(2);
 if (!binary || !webRoot) {
@@ -36,9 +36,8 @@ async function load(page, cdp, url) {
   return { fcp, usableMs, bytes, requests, statuses };
 }
 
-const { chromium } = await loadPlaywright();
 const server = await startServer(resolve(binary), resolve(webRoot));
-const browser = await launchChromium(chromium);
+const browser = await launchChromium();
 const rows = { cold: [], warm: [] };
 for (let i = 0; i < Number(reps); i++) {
   const context = await browser.newContext({ viewport: { width: 1440, height: 900 } });

@@ -8,7 +8,7 @@
 import { loadavg } from 'node:os';
 import { mkdirSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import { launchChromium, loadPlaywright, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
+import { launchChromium, startServer, stopAll, watchdog } from '../tests/browser/harness.mjs';
 
 const [binary, webRoot, reps = '3', shots] = process.argv.slice(2);
 if (!binary || !webRoot) {
@@ -52,9 +52,8 @@ async function clickToComplete(page, id) {
   return ms;
 }
 
-const { chromium } = await loadPlaywright();
 const server = await startServer(resolve(binary), resolve(webRoot));
-const browser = await launchChromium(chromium);
+const browser = await launchChromium();
 const page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
 await page.goto(server.base + '/');
 await page.locator('#server-state[data-ok="true"]').waitFor();

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 import { staleVendored } from './vendor.mjs';
 
 const { binary, webRoot, shots } = testArguments('dashboard.test.mjs');
@@ -16,13 +16,12 @@ const external = [];
 const cspViolations = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   // The tests drive one page through every panel, whose long requests overlap when the machine is busy: room for
   // eight at once from this one address, so that a slow run is not refused 429 (the per-address limit has tests of
   // its own in tests/server).
   server = await startServer(binary, webRoot, { flags: ['--max-streams', '16'] });
   base = server.base;
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
   page = await openPage(browser, { width: 1280, height: 860 }, consoleErrors);
   page.on('request', (r) => !/^(blob|data):/.test(r.url()) && !r.url().startsWith(base) && external.push(r.url()));
   // Whatever the server's Content-Security-Policy refuses (an inline style, an image source) is reported here.

@@ -7,7 +7,7 @@ import net from 'node:net';
 
 const started = [];
 
-export async function loadPlaywright() {
+async function loadPlaywright() {
   try {
     return await import('playwright-core');
   } catch (err) {
@@ -51,7 +51,9 @@ export async function startServer(binary, webRoot, { timeoutMs = 20000, flags = 
   throw new Error(`server did not answer /livez within ${timeoutMs} ms:\n${output}`);
 }
 
-export async function launchChromium(chromium) {
+// Debian's Chromium driven by playwright-core (from the lockfile; no browser download).
+export async function launchChromium() {
+  const { chromium } = await loadPlaywright();
   const executablePath = ['/usr/lib/chromium/chromium', '/usr/bin/chromium'].find(existsSync);
   if (!executablePath) throw new Error('Debian chromium is not installed (apt-get install chromium).');
   const browser = await chromium.launch({ executablePath, args: ['--no-sandbox', '--disable-gpu',

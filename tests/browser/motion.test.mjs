@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, sameMotionFrame, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('motion.test.mjs');
 watchdog(200_000);
@@ -14,9 +14,8 @@ let browser; let server;
 const errors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   server = await startServer(binary, webRoot);
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
 });
 after(stopAll);
 
@@ -67,7 +66,7 @@ test('heavy top: play, scrub, turn, and its state against time', async () => {
   const page = await openMotion({ width: 1440, height: 900 });
   await page.locator('#motion select[name="problem"]').selectOption('heavy-top');
   const { frames, sent } = await run(page);
-  assert.equal(frames, 101);  // y(0) and the 100 frames the panel asks for
+  assert.equal(frames, 101);  // y(0) and the motion route's default 100 frames
   // The slider names a frame's time: the server's (the animation's XMP); frame 60 of 100 over t = 2 is near 1.2.
   await playScrubTurn(page, sent, 60);
   const t = Number(await page.locator('#motion-figure').getAttribute('data-time'));

@@ -6,7 +6,7 @@
 // times its work-precision request several times and shows medians; coinciding curves and the figures say so.
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('plan.test.mjs');
 watchdog(150_000);
@@ -20,10 +20,9 @@ let browser; let page; let plain; let limited; let capped;
 const errors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   [plain, limited, capped] = await Promise.all([startServer(binary, webRoot),
     startServer(binary, webRoot, { flags: LIMITED }), startServer(binary, webRoot, { flags: CAPPED })]);
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
   page = await openPage(browser, { width: 1280, height: 860 }, errors, { console: false });
   // The limited server stops a sweep or map after 1 s with a 504, which the panel reports ("this takes minutes");
   // on a slow (sanitizer) build a probe can meet it, and Chromium logs every non-2xx answer as an error anyway.

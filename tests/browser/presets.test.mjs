@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('presets.test.mjs');
 watchdog(880_000);  // Figures 5.1 and 5.2 are two full sweeps: minutes under the sanitizers
@@ -17,9 +17,8 @@ let browser; let page; let base;
 const errors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   base = (await startServer(binary, webRoot)).base;
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
   // Figure 5.1 is a 882-cell sweep: minutes in the sanitizer build.
   page = await openPage(browser, { width: 1440, height: 900 }, errors, { timeoutMs: 120_000 });
 });

@@ -5,7 +5,7 @@
 // deprecated field marked.
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('reference.test.mjs');
 watchdog(90_000);
@@ -13,9 +13,8 @@ let browser; let page; let server;
 const errors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   server = await startServer(binary, webRoot);
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
   page = await openPage(browser, { width: 1200, height: 900 }, errors);
 });
 after(stopAll);

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('share.test.mjs');
 watchdog(120_000);
@@ -16,9 +16,8 @@ let browser; let page; let base;
 const errors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   base = (await startServer(binary, webRoot)).base;
-  browser = await launchChromium(chromium);
+  browser = await launchChromium();
   page = await openPage(browser, { width: 1280, height: 860 }, errors);
 });
 after(stopAll);

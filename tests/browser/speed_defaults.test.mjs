@@ -7,7 +7,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchChromium, loadPlaywright, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
+import { launchChromium, openPage, startServer, stopAll, testArguments, watchdog } from './harness.mjs';
 
 const { binary, webRoot, shots } = testArguments('speed_defaults.test.mjs');
 watchdog(280_000);
@@ -16,11 +16,10 @@ let page; let base;
 const consoleErrors = [];
 
 before(async () => {
-  const { chromium } = await loadPlaywright();
   ({ base } = await startServer(binary, webRoot));
   const spec = await (await fetch(base + '/openapi.json')).json();
   NOMINAL = Object.fromEntries(spec['x-lienewton'].enums.integrator.map((e) => [e.value, e.order]));
-  const browser = await launchChromium(chromium);
+  const browser = await launchChromium();
   page = await openPage(browser, { width: 1440, height: 900 }, consoleErrors, { timeoutMs: 120_000 });
   await page.goto(base + '/');
   await page.locator('#server-state[data-ok="true"]').waitFor();
