@@ -33,7 +33,7 @@ export function createComparePanel(root) {
   const timeBox = el('div', { class: 'chart', id: 'compare-time-chart' });
   const timeCaption = el('figcaption', {}, 'Residual against solver CPU time, iteration by iteration');
   const tableBox = el('div', { class: 'table-wrap', id: 'compare-table' });
-  const frames = runMotions('compare-motion', 'The iterates as bodies', { at: 'last',
+  const motions = runMotions('compare-motion', 'The iterates as bodies', { at: 'last',
     caption: 'The iterates y\u2080 \u2026 y\u2099 of the chosen run (drag to turn the view); the path of a body point is coloured by n.' });
   // The solves Run sends, one per ticked method and differential.
   function requestsOf() {
@@ -57,7 +57,7 @@ export function createComparePanel(root) {
     el('p', { class: 'hint' }, 'Times are the solver\u2019s own CPU time (cpu_seconds of each trace record), not the '
       + 'HTTP round trip. \u201cTime to tol\u201d is the CPU time of the first iterate with \u2016f\u2016 \u2264 tol, on the trace scaled to its median. '
       + RATE_WORDS),
-    tableBox, frames.element, share.element));
+    tableBox, motions.element, share.element));
   const start = runner(form, live);
 
   form.addEventListener('submit', async (e) => {
@@ -70,7 +70,7 @@ export function createComparePanel(root) {
     const requests = [];
     const runs = [];
     tableBox.replaceChildren();
-    frames.hide();
+    motions.hide();
     last = null;
     share.refresh();
     timeCaption.textContent = 'Residual against solver CPU time, iteration by iteration (one run; the median follows)';
@@ -125,7 +125,7 @@ export function createComparePanel(root) {
       live.textContent = `Compared ${picks.length} runs, each timed ${REPEATS} times more.`;
       // Each run's iterates as bodies, once the timings are done (drawing beside them would load the server they
       // time): the server re-runs the chosen solve to draw them.
-      if (drawsBodies(requests[0])) await frames.show(requests.map((request, i) => ({ label: labels[i], request: { ...request, kind: 'solve' },
+      if (drawsBodies(requests[0])) await motions.show(requests.map((request, i) => ({ label: labels[i], request: { ...request, kind: 'solve' },
         describe: (k, n) => `${iterateText(n, columns[i][n])} (frame ${k})` })));
     });
     share.refresh();

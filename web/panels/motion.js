@@ -4,13 +4,13 @@
 // from the integrate route's frames and steps.
 import { postJSON } from '../shared/api.js';
 import { chartMessage, invariantChart, stateChart } from '../shared/chart.js';
-import { entry, schemas } from '../shared/catalog.js';
+import { schemas } from '../shared/catalog.js';
 import { el } from '../shared/dom.js';
 import { actions, contractNumber, field, select } from '../shared/fields.js';
 import { runner, value } from '../shared/form.js';
 import { INTEGRATORS, PROBLEMS } from '../shared/labels.js';
 import { motionPlayer } from '../shared/motion_player.js';
-import { programFields, problemOf } from '../shared/request.js';
+import { groupOf, programFields, problemOf } from '../shared/request.js';
 import { sharePanel } from '../shared/share.js';
 
 const MECHANICS = ['heavy-top', 'rigid-body', 'stiff-body', 'chain'];
@@ -22,8 +22,7 @@ const CHART_FRAMES = 1000;
 // w of its matrix [[R, 0], [0, [[I, w], [0, 1]]]]; the free rigid body's w = I^-1 y^T m, from its parameters (or
 // their defaults).
 function angularVelocity(request, y) {
-  const group = request.g ? request.group : entry('problem', request.problem).group;
-  if (group === 'SOxR') return [y[3][6], y[4][6], y[5][6]];
+  if (groupOf(request) === 'SOxR') return [y[3][6], y[4][6], y[5][6]];
   if (request.g || request.problem !== 'rigid-body') return null;
   const defaults = schemas.RigidBody?.properties ?? {};
   const m = request.rigid_body?.momentum ?? defaults.momentum?.default ?? [0.6, 0.8, 0.5];
@@ -90,7 +89,8 @@ export function createMotionPanel(root) {
   let last = null;  // { request, integration }
 
   function requestOf() {
-    const request = { ...problemOf(form), integrator: value(form, 'integrator'), t_end: value(form, 't_end'), frames: 100 };
+    // No frames: the motion route's own default (100) for the animation.
+    const request = { ...problemOf(form), integrator: value(form, 'integrator'), t_end: value(form, 't_end') };
     if (request.g || request.problem === 'chain') request.n = value(form, 'n');
     return request;
   }

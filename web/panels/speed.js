@@ -14,8 +14,6 @@ import { sharePanel } from '../shared/share.js';
 import { statusBadge } from '../shared/summary.js';
 import { REPEATS, median, withinNoise } from '../shared/repeats.js';
 
-// The animation's frames: the motion route's default, a few seconds of play.
-const MOTION_FRAMES = 100;
 
 const DEFAULT_TICKS = ['implicit-euler|newton-group|exact', 'implicit-euler|fixed-point|exact',
   'dirk-cg2|newton-group|exact', 'dirk-cg2|newton-algebra|dexpinv-1'];
@@ -177,7 +175,7 @@ export function createSpeedPanel(root) {
       }
       tableBox.replaceChildren(integrateTable(runs, invariants));
       await trajectory.show(runs.map(({ choice, request, result }) => trajectoryRun(choiceLabel(choice), result,
-        { ...request, kind: 'integrate', frames: MOTION_FRAMES }, invariants)));
+        { ...request, kind: 'integrate' }, invariants)));
       live.textContent = `Done: ${timed}, ${runs.length} invariant runs.`;
     });
     share.refresh();

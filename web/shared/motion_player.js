@@ -3,10 +3,11 @@
 // (ImageDecoder), so Play/Pause and the slider step through them with no new request; a drag on the picture turns
 // the camera, and the server draws the new view on release, at the same frame.
 import { postBlob } from './api.js';
-import { catalog, entry } from './catalog.js';
+import { catalog } from './catalog.js';
 import { el } from './dom.js';
 import { fillSelect } from './form.js';
 import { imageWidth } from './image_width.js';
+import { groupOf } from './request.js';
 
 // Square pictures as wide as their figure, at most MAX_SIZE pixels.
 const MAX_SIZE = 512;
@@ -35,7 +36,7 @@ export function frameTimes(bytes) {
 // only at N = 3, the rotations of space): asking where it cannot would only log a failed request. A group the
 // catalog does not list is asked for, and the server says why not.
 export function drawsBodies(request) {
-  const name = request.g ? request.group ?? 'SO' : entry('problem', request.problem)?.group ?? 'SO';
+  const name = groupOf(request);
   const bodies = catalog.groups?.find((g) => g.value === name)?.bodies_n ?? 'any';
   return bodies === 'any' || bodies.includes(request.n);
 }

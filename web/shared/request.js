@@ -90,6 +90,12 @@ export function problemOf(form) {
   }
 }
 
+// The group a sent request is on: its program's (SO when it names none, the server's default), or its built-in
+// problem's as the catalog names it (heavy-top: SOxR; the paper's problems: SO).
+export function groupOf(request) {
+  return request.g ? request.group ?? 'SO' : entry('problem', request.problem).group ?? 'SO';
+}
+
 export function limitFields(d = DEFAULTS) {
   return [
     contractNumber('SolveRequest', 'tol', 'Tolerance on \u2016f(y)\u2016', { value: d.tol }),
