@@ -665,6 +665,17 @@ test('the stability map shows a Newton variant and continuation beside the paper
     await panel.locator(`input[name="${name}"]`).fill(v);
   }
   const sent = page.waitForRequest(sweepOf(1, 4));
+  // The run's end, as the page marks it: the form busy from the click, then no longer.
+  await page.evaluate(() => {
+    const form = document.querySelector('#stability form');
+    window.stabilityRunEnded = new Promise((resolve) => {
+      let began = false;
+      new MutationObserver((_, observer) => {
+        if (form.getAttribute('aria-busy') === 'true') began = true;
+        else if (began) { observer.disconnect(); resolve(); }
+      }).observe(form, { attributes: true, attributeFilter: ['aria-busy'] });
+    });
+  });
   await panel.getByRole('button', { name: 'Run' }).click();
   const request = JSON.parse((await sent).postData());
   assert.equal(request.globalization, 'line-search');
@@ -672,10 +683,11 @@ test('the stability map shows a Newton variant and continuation beside the paper
   assert.equal(request.multistart, 16);
   const { body: variant } = await api('/api/v1/sweep', request);
   const { body: paper } = await api('/api/v1/sweep', { ...request, globalization: 'none', continuation: false, multistart: 0 });
-  // Each cell as it streams in (the grid of the previous run is replaced; a sanitizer build is slow to fill it).
+  // The grid once this run has ended (a cell of the previous grid with the same method, n and h keeps that grid's
+  // status until this run's record replaces it).
+  await page.evaluate(() => window.stabilityRunEnded);
   for (const cell of variant.cells) {
     const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
-    await loc.and(panel.locator('[data-status]')).waitFor();
     assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
   }
   await page.waitForFunction(() => document.querySelector('#heatmap-img')?.naturalWidth > 0);
