@@ -558,8 +558,22 @@ std::string stream_schema(const RouteSpec& r) {
   return result.substr(0, result.size() - std::string("Result").size()) + "StreamRecord";
 }
 
-// Query parameters of a GET form: one per property of the request schema (see query_params.hpp).
-json query_parameters(const json& all_schemas, const std::string& schema) {
+// The request schema of a route of the field table.
+const char* request_schema_of(fields::Route route) {
+  switch (route) {
+    case fields::solve: return "SolveRequest";
+    case fields::sweep: return "SweepRequest";
+    case fields::basins: return "BasinRequest";
+    case fields::integrate: return "IntegrateRequest";
+    case fields::work_precision: return "WorkPrecisionRequest";
+    default: return "";
+  }
+}
+
+// Query parameters of a GET form: one per field the route reads (see query_params.hpp), in the codec's words: its
+// own schema's properties (a render's picture options), then a render's base request (render_routes(): a solve's,
+// an integration's too where it draws one).
+json query_parameters(const json& all_schemas, const RouteSpec& route) {
   json params = json::array();
   std::set<std::string> named;
   // A parameter has its field's schema: a number, string or boolean as such, a list of them comma-separated (or
@@ -583,17 +597,17 @@ json query_parameters(const json& all_schemas, const std::string& schema) {
       params.push_back(std::move(p));
     }
   };
-  add(all_schemas[schema]);
-  if (schema == "RenderFramesRequest" || schema == "RenderMotionRequest") add(all_schemas["SolveRequest"]);
-  if (schema == "RenderHeatmapRequest") add(all_schemas["SweepRequest"]);
-  if (schema == "RenderBasinsRequest") add(all_schemas["BasinRequest"]);
-  if (schema == "RenderWorkPrecisionRequest") add(all_schemas["WorkPrecisionRequest"]);
-  if (schema == "RenderResidualsRequest") {
-    json solve = all_schemas["SolveRequest"];
-    solve["properties"].erase("method");
-    solve["properties"].erase("differential");
-    add(solve);
+  add(all_schemas[route.request_schema]);
+  static const std::string kRender = "/api/v1/render/";
+  const RenderRoute* render = route.path.rfind(kRender, 0) == 0 ? find_render_route(route.path.substr(kRender.size())) : nullptr;
+  if (!render) return params;
+  json base = all_schemas[request_schema_of(render->base)];
+  if (render->picture == fields::render_residuals) {  // one solve per method x differential: the lists choose them
+    base["properties"].erase("method");
+    base["properties"].erase("differential");
   }
+  add(base);
+  if (render->integrations_too) add(all_schemas[request_schema_of(fields::integrate)]);
   return params;
 }
 
@@ -610,7 +624,7 @@ std::string openapi_document(const ServerOptions& options) {
         if (const json examples = request_examples(r.request_schema); !examples.empty()) media["examples"] = examples;
         op["requestBody"] = {{"required", true}, {"content", {{"application/json", media}}}};
       } else {
-        op["parameters"] = query_parameters(all, r.request_schema);
+        op["parameters"] = query_parameters(all, r);
       }
     }
     json content = json::object();
