@@ -611,6 +611,27 @@ json query_parameters(const json& all_schemas, const RouteSpec& route) {
   return params;
 }
 
+// The schema with every $ref replaced by the schema it names, titled by that name. A request body's schema is
+// written out in full: openapi-typescript (at its defaults) types a property with a default as always present in a
+// components schema, as a response carries it, but as optional inside a requestBody, as a request may leave it out.
+json written_out(const json& s, const json& all_schemas) {
+  if (s.is_array()) {
+    json out = json::array();
+    for (const json& item : s) out.push_back(written_out(item, all_schemas));
+    return out;
+  }
+  if (!s.is_object()) return s;
+  if (s.contains("$ref")) {
+    const std::string name = s["$ref"].get<std::string>().substr(std::string("#/components/schemas/").size());
+    json out = written_out(all_schemas.at(name), all_schemas);
+    out["title"] = name;
+    return out;
+  }
+  json out = json::object();
+  for (const auto& [key, value] : s.items()) out[key] = written_out(value, all_schemas);
+  return out;
+}
+
 }  // namespace
 
 std::string openapi_document(const ServerOptions& options) {
@@ -620,7 +641,7 @@ std::string openapi_document(const ServerOptions& options) {
     json op{{"operationId", operation_id(r)}, {"summary", r.summary}, {"tags", json::array({tag_of(r.path)})}};
     if (!r.request_schema.empty()) {
       if (r.method == "POST") {
-        json media{{"schema", ref(r.request_schema)}};
+        json media{{"schema", written_out(ref(r.request_schema), all)}};
         if (const json examples = request_examples(r.request_schema); !examples.empty()) media["examples"] = examples;
         op["requestBody"] = {{"required", true}, {"content", {{"application/json", media}}}};
       } else {

@@ -10,6 +10,7 @@ const link = (name) => `<a href="#${anchor(name)}">${esc(name)}</a>`;
 export function typeText(s) {
   if (!s) return '';
   if (s.$ref) return link(refName(s.$ref));
+  if (s.title) return link(s.title);  // a schema written out in full (a request body) names the one it copies
   let t;
   if (s.oneOf || s.anyOf) t = (s.oneOf || s.anyOf).map(typeText).join(' | ');
   else if (s.type === 'array') t = `${typeText(s.items)}[]`;

@@ -31,8 +31,7 @@ def field_names(doc, method, path):
     op = doc["paths"][path][method]
     if method == "get":
         return [p["name"] for p in op["parameters"]]
-    ref = op["requestBody"]["content"]["application/json"]["schema"]["$ref"].split("/")[-1]
-    return list(doc["components"]["schemas"][ref]["properties"])
+    return list(op["requestBody"]["content"]["application/json"]["schema"]["properties"])
 
 
 def main():

@@ -49,10 +49,11 @@ const tsc = (config) => {
   }
 };
 
-test('generated client calls solve', async () => {
+test('generated client calls solve and integrate', async () => {
   const doc = await (await fetch(`${base}/openapi.json`)).json();
-  // A field with a default is optional in a request: the generator is told not to make it required.
-  writeFileSync(join(work, 'schema.d.ts'), astToString(await openapiTS(doc, { defaultNonNullable: false })));
+  // The generator at its defaults (as `npx openapi-typescript URL -o schema.d.ts` runs it): a request field with a
+  // default is optional because the document writes each request body's schema out in full.
+  writeFileSync(join(work, 'schema.d.ts'), astToString(await openapiTS(doc)));
   symlinkSync(modules, join(work, 'node_modules'));
   // tsc emits ES modules; Node 18 (Debian 12's) runs a .js file as one only under a package.json that says so.
   writeFileSync(join(work, 'package.json'), JSON.stringify({ type: 'module' }));
@@ -65,9 +66,14 @@ const { data, error } = await client.POST('/api/v1/solve', {
   body: { problem: 'paper-linear', n: 3, h: 0.5, method: 'newton-group', differential: 'exact', seed: 1 } });
 if (error || !data) throw new Error(JSON.stringify(error));
 const status: components['schemas']['SolveResult']['status'] = data.status;
+const integration = await client.POST('/api/v1/integrate', {
+  body: { problem: 'heavy-top', integrator: 'rkmk-gauss2', h: 0.01, t_end: 0.1 } });
+if (integration.error || !integration.data) throw new Error(JSON.stringify(integration.error));
+const globalError: number | null | undefined = integration.data.global_error;
 const bad = await client.POST('/api/v1/solve', { body: { n: 3, h: -1 } });
 const version = await client.GET('/api/v1/version');
-console.log(JSON.stringify({ status, iterations: data.iterations, residual: data.residual,
+console.log(JSON.stringify({ status, iterations: data.iterations, residual: data.residual, globalError,
+  steps: integration.data.steps?.length,
   code: bad.error?.error.code, field: bad.error?.error.field, http: bad.response.status,
   version: version.data?.version }));
 `);
@@ -78,6 +84,8 @@ console.log(JSON.stringify({ status, iterations: data.iterations, residual: data
   assert.ok(out.iterations > 0 && out.residual < 1e-10, JSON.stringify(out));
   assert.deepEqual([out.http, out.code, out.field], [400, 'invalid_field', 'h']);
   assert.equal(out.version, doc.info.version);
+  assert.equal(out.steps, 10);
+  assert.ok(Number.isFinite(out.globalError), JSON.stringify(out));
 
   // The types are the document's: h as a string does not compile.
   writeFileSync(join(work, 'wrong.ts'), `
