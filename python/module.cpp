@@ -4,6 +4,7 @@
 // arrays. The work runs on its own thread with the GIL released, while the calling thread polls Python's
 // signal handlers, so Ctrl-C cancels it within about one solver iteration.
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -12,9 +13,14 @@
 #include <new>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "core/cancellation.hpp"
+#include "core/fields.hpp"
+#include "core/integrate.hpp"
+#include "python/group_bindings.hpp"
 #include "server/json_codec.hpp"
 #include "server/request_runner.hpp"
 
@@ -85,6 +91,54 @@ py::tuple run(const std::string& command, const std::string& request) {
   return py::make_tuple(ok, py::bytes(answer));
 }
 
+const char* type_name(fields::Type t) {
+  switch (t) {
+    case fields::Type::number: return "number";
+    case fields::Type::integer: return "integer";
+    case fields::Type::boolean: return "boolean";
+    case fields::Type::string: return "string";
+    case fields::Type::object: return "object";
+    case fields::Type::matrix: return "matrix";
+  }
+  return "";
+}
+
+py::dict row(const fields::Field& f) {
+  py::dict d;
+  d["name"] = f.name;
+  d["type"] = type_name(f.type);
+  d["array"] = f.array;
+  d["description"] = f.description;
+  d["minimum"] = f.minimum ? py::cast(*f.minimum) : py::none();
+  d["maximum"] = f.maximum ? py::cast(*f.maximum) : py::none();
+  d["exclusive_minimum"] = f.exclusive_minimum;
+  d["values"] = f.values;
+  d["default"] = std::visit(
+      [](const auto& v) -> py::object {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>) return py::none();
+        else return py::cast(v);
+      },
+      f.default_value);
+  d["min_items"] = f.min_items;
+  d["max_items"] = f.max_items;
+  d["items"] = f.items;
+  py::list properties;
+  for (const fields::Field& p : f.properties) properties.append(row(p));
+  d["properties"] = properties;
+  return d;
+}
+
+// The request fields COMMAND takes, in the codec's reading order, each row of core/fields.hpp as a dict.
+py::list fields_of(const std::string& command) {
+  const std::optional<Command> c = command_from_string(command);
+  if (!c) throw py::value_error("no command " + command);
+  constexpr fields::Route routes[] = {fields::solve, fields::sweep, fields::basins, fields::integrate,
+                                      fields::work_precision};
+  py::list out;
+  for (const fields::Field* f : fields::fields_of(routes[static_cast<int>(*c)])) out.append(row(*f));
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_lienewton, m) {
@@ -92,5 +146,10 @@ PYBIND11_MODULE(_lienewton, m) {
   m.def("run", &run, py::arg("command"), py::arg("request"),
         "Runs COMMAND (solve, sweep, basins, integrate, work-precision) on a request document (JSON text), as "
         "the CLI does. Returns (True, result JSON) or (False, the error document naming the field).");
+  m.def("fields", &fields_of, py::arg("command"),
+        "The request fields COMMAND takes (the codec's table): name, type, array, default, minimum, maximum, "
+        "exclusive_minimum, values, description, items, properties.");
   m.attr("version") = LIENEWTON_VERSION;
+  m.attr("max_frames") = IntegrateRequest::kMaxFrames;
+  python::bind_groups(m);
 }

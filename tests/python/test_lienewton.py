@@ -2,6 +2,7 @@
 statuses and reasons, NumPy arrays of the right shapes, the CLI's error documents as RequestError, a released GIL,
 and Ctrl-C that stops a long call. Run: LIENEWTON_CLI=build/bin/lienewton PYTHONPATH=build/python python3 -m unittest
 """
+import inspect
 import json
 import os
 import signal
@@ -109,6 +110,85 @@ class SameAsCli(unittest.TestCase):
         self.same("work-precision", problem="rigid-body", h=[0.1, 0.05], t_end=0.5)
 
 
+class Trajectories(unittest.TestCase):
+    """lienewton.integrate's t and y: (T,) times and (T, n, n) states as solve_ivp gives, the CLI's states."""
+
+    def cli_states(self, **fields):
+        """The CLI's document with a frame at every step (its frames keep every step up to 1000 steps)."""
+        status, document = cli("integrate", lienewton.request_json(frames=1000, **fields))
+        self.assertEqual(status, 0, document)
+        return document
+
+    def test_default_is_the_whole_trajectory(self):
+        r = lienewton.integrate(problem="heavy-top")
+        steps = len(r.steps)
+        self.assertEqual(r.t.shape, (steps + 1,))
+        self.assertEqual(r.y.shape, (steps + 1, 7, 7))
+        self.assertEqual((r.t[0], r.t[-1]), (0.0, 1.0))
+        self.assertTrue(np.array_equal(r.y[-1], r.y_end))
+        self.assertTrue(np.array_equal(r.frame_steps, np.arange(steps + 1)))
+        expected = self.cli_states(problem="heavy-top")
+        self.assertEqual(r.y.tolist(), expected["frames"])
+        self.assertEqual(r.y_end.tolist(), expected["y"])
+
+    def test_frames_gives_that_many_evenly_spaced_states(self):
+        # 40 fixed steps; frames = 5 are the steps 0, 10, 20, 30, 40.
+        fields = dict(problem="rigid-body", h=0.025, t_end=1)
+        expected = self.cli_states(**fields)
+        r = lienewton.integrate(frames=5, **fields)
+        self.assertEqual(r.t.shape, (5,))
+        self.assertEqual(r.y.shape, (5, 3, 3))
+        self.assertEqual(r.frame_steps.tolist(), [0, 10, 20, 30, 40])
+        np.testing.assert_allclose(r.t, np.linspace(0, 1, 5), rtol=0, atol=1e-12)
+        self.assertEqual(r.y.tolist(), [expected["frames"][k] for k in (0, 10, 20, 30, 40)])
+        self.assertIs(r.frames, r.y)
+        for frames in (1, 2, 3, 7, 41):
+            self.assertEqual(len(lienewton.integrate(frames=frames, **fields).t), frames)
+        self.assertEqual(len(lienewton.integrate(frames=100, **fields).t), 41)  # fewer states than asked
+        none = lienewton.integrate(frames=0, **fields)
+        self.assertEqual((none.t.shape, none.y.shape, none.y_end.shape), ((0,), (0, 3, 3), (3, 3)))
+
+    def test_adaptive_frames_are_evenly_spread_in_time(self):
+        r = lienewton.integrate(problem="rigid-body", rtol=1e-8, t_end=2, frames=5)
+        self.assertEqual(len(r.t), 5)
+        self.assertEqual((r.t[0], r.t[-1]), (0.0, 2.0))
+        self.assertTrue(np.all(np.diff(r.t) > 0))
+
+    def test_bad_frames_is_the_codecs_error(self):
+        with self.assertRaises(lienewton.RequestError) as caught:
+            lienewton.integrate(frames=-1)
+        self.assertEqual(caught.exception.field, "frames")
+
+    def test_repr_is_short(self):
+        r = lienewton.integrate(problem="heavy-top")
+        self.assertLess(len(repr(r)), 1500)
+        self.assertTrue(repr(r).startswith("Result(status='converged'"), repr(r)[:80])
+
+
+class Documentation(unittest.TestCase):
+    def test_help_lists_every_field(self):
+        for name, command in (("solve", "solve"), ("sweep", "sweep"), ("basins", "basins"),
+                              ("integrate", "integrate"), ("work_precision", "work-precision")):
+            function = getattr(lienewton, name)
+            rows = lienewton.fields(command)
+            self.assertGreater(len(rows), 10)
+            signature = inspect.signature(function)
+            for f in rows:
+                with self.subTest(command=command, field=f.name):
+                    self.assertIn(f"\n{f.name} : ", function.__doc__)
+                    self.assertEqual(signature.parameters[f.name].default, f["default"])
+            self.assertIn("Parameters\n----------", function.__doc__)
+
+    def test_entries_state_type_default_and_bounds(self):
+        doc = lienewton.solve.__doc__
+        self.assertIn("\nn : int, default: 3\n", doc)
+        self.assertIn("In [2, 100000].", doc)
+        self.assertIn("method : {'fixed-point', 'newton-group', 'newton-algebra'}, default: 'newton-group'", doc)
+        self.assertIn("\nh : float, default: 0.5\n", doc)
+        self.assertIn("In (0, 1000000].", doc)
+        self.assertIn("\nh : float, optional\n", lienewton.integrate.__doc__)
+        self.assertIn("frames : int, optional", lienewton.integrate.__doc__)
+
 class Errors(unittest.TestCase):
     def refused(self, command, **fields):
         status, expected = cli(command, lienewton.request_json(**fields))
@@ -122,9 +202,23 @@ class Errors(unittest.TestCase):
         e = self.refused("solve", n=-1)
         self.assertEqual((e.field, e.code), ("n", "invalid_field"))
 
-    def test_unknown_field(self):
-        e = self.refused("sweep", speed=3)
+    def test_unknown_field_with_did_you_mean(self):
+        status, expected = cli("sweep", lienewton.request_json(speed=3))
+        self.assertEqual(status, 2)
+        with self.assertRaises(lienewton.RequestError) as caught:
+            lienewton.sweep(speed=3)
+        e = caught.exception
         self.assertEqual((e.field, e.code), ("speed", "unknown_field"))
+        self.assertEqual(e.message, expected["error"]["message"] + "; did you mean seed?")
+
+    def test_misspelt_keyword_names_the_field_it_meant(self):
+        with self.assertRaises(lienewton.RequestError) as caught:
+            lienewton.integrate(problme="heavy-top")
+        self.assertTrue(caught.exception.message.endswith("did you mean problem?"), caught.exception.message)
+
+    def test_unknown_field_far_from_every_name_has_no_guess(self):
+        e = self.refused("solve", xyzzy=1)
+        self.assertNotIn("did you mean", e.message)
 
     def test_program_error_has_line_and_column(self):
         e = self.refused("solve", g="a = y\nb = a*")
