@@ -41,19 +41,22 @@ class Lexer {
       const bool spaced = skip_blanks();
       if (i_ >= s_.size()) break;
       const char c = s_[i_];
-      if (!open_.empty() && open_.back() == '[' && spaced && !out.empty() && ends_value(out.back()) &&
+      if (!open_.empty() && open_.back().bracket == '[' && spaced && !out.empty() && ends_value(out.back()) &&
           starts_element()) {
         out.push_back(Token{Tok::comma, ",", 0, line_, col_});
       }
       if (c == '\n') {
-        if (!open_.empty() && open_.back() == '[') out.push_back(Token{Tok::semicolon, ";", 0, line_, col_});
+        if (!open_.empty() && open_.back().bracket == '[') out.push_back(Token{Tok::semicolon, ";", 0, line_, col_});
         else if (open_.empty()) out.push_back(Token{Tok::newline, "\n", 0, line_, col_});
         advance();
         continue;
       }
       out.push_back(next(c, out));
     }
-    if (!open_.empty()) fail_at(line_, col_, std::string("the program ends before this '") + open_.back() + "' is closed");
+    // At the bracket left open, not at the end: a missing ')' on line 1 otherwise points past the last line.
+    if (!open_.empty())
+      fail_at(open_.back().line, open_.back().column,
+              std::string("this '") + open_.back().bracket + "' is never closed (the program ends first)");
     out.push_back(Token{Tok::eof, "", 0, line_, col_});
     return out;
   }
@@ -76,7 +79,7 @@ class Lexer {
     bool skipped = false;
     while (i_ < s_.size()) {
       const char c = s_[i_];
-      if (c == ' ' || c == '\t' || c == '\r' || (c == '\n' && !open_.empty() && open_.back() == '(')) {
+      if (c == ' ' || c == '\t' || c == '\r' || (c == '\n' && !open_.empty() && open_.back().bracket == '(')) {
         advance();
       } else if (c == '%' || c == '#') {
         while (i_ < s_.size() && s_[i_] != '\n') advance();
@@ -141,12 +144,12 @@ class Lexer {
       return t;
     };
     switch (c) {
-      case '(': open_.push_back('('); return one(Tok::open_paren);
-      case '[': open_.push_back('['); return one(Tok::open_bracket);
+      case '(': open_.push_back({'(', line_, col_}); return one(Tok::open_paren);
+      case '[': open_.push_back({'[', line_, col_}); return one(Tok::open_bracket);
       case ')':
       case ']': {
         const char want = c == ')' ? '(' : '[';
-        if (open_.empty() || open_.back() != want)
+        if (open_.empty() || open_.back().bracket != want)
           fail_at(line_, col_, std::string("unbalanced '") + c + "'");
         open_.pop_back();
         return one(c == ')' ? Tok::close_paren : Tok::close_bracket);
@@ -155,7 +158,7 @@ class Lexer {
       case ';': return one(Tok::semicolon);
       case '\'':
         if (before.empty() || !ends_value(before.back()) ||
-            (!open_.empty() && open_.back() == '[' && i_ > 0 && (s_[i_ - 1] == ' ' || s_[i_ - 1] == '\t')))
+            (!open_.empty() && open_.back().bracket == '[' && i_ > 0 && (s_[i_ - 1] == ' ' || s_[i_ - 1] == '\t')))
           fail_at(line_, col_, "strings are not supported ('  is the transpose, after a value)");
         return one(Tok::op);
       case '.':
@@ -180,7 +183,11 @@ class Lexer {
   std::string_view s_;
   std::size_t i_ = 0;
   int line_ = 1, col_ = 1;
-  std::vector<char> open_;
+  struct Open {
+    char bracket;
+    int line, column;
+  };
+  std::vector<Open> open_;  // the brackets open here, innermost last
 };
 
 class Parser {

@@ -302,6 +302,14 @@ TEST(UserField, ErrorsNameTheLineColumnAndSpeakMatlab) {
   const RequestError shape = compile_error("g = y(:, 1)");
   EXPECT_NE(std::string(shape.what()).find("g must be n\u00d7n"), std::string::npos) << shape.what();
   EXPECT_GT(compile_error("g = (y + ").line(), 0);
+  // A bracket left open is reported where it opens, not past the program's last line.
+  const RequestError open = compile_error("a = (y + 1\nb = a * 2\ng = b - b'");
+  EXPECT_EQ(open.line(), 1);
+  EXPECT_EQ(open.column(), 5);
+  EXPECT_NE(std::string(open.what()).find("this '(' is never closed"), std::string::npos) << open.what();
+  const RequestError row = compile_error("u = y;\ng = [u(1, 1) 0 0; 0 0 0; 0 0 0");
+  EXPECT_EQ(row.line(), 2);
+  EXPECT_EQ(row.column(), 5);
   EXPECT_GT(compile_error("g = y(4, 1)").line(), 0);
   EXPECT_GT(compile_error("g = y ^ 0.5").line(), 0);
   EXPECT_GT(compile_error("g = 'abc'").line(), 0);

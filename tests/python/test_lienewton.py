@@ -225,6 +225,11 @@ class Errors(unittest.TestCase):
         self.assertEqual((e.field, e.code, e.line), ("g", "unprocessable", 2))
         self.assertIsInstance(e.column, int)
 
+    def test_unclosed_bracket_is_reported_where_it_opens(self):
+        e = self.refused("solve", g="a = (y + 1\nb = a * 2\ng = b - b'")
+        self.assertEqual((e.field, e.line, e.column), ("g", 1, 5))
+        self.assertIn("'(' is never closed", e.message)
+
     def test_nan_is_refused(self):
         with self.assertRaises(lienewton.RequestError):
             lienewton.solve(h=float("nan"))
