@@ -974,6 +974,18 @@ def parameter_renders_one_address(t):
     return detail
 
 
+def accept_by_range_and_quality(t):
+    # The 406 of a POST route asked for Server-Sent Events alone reads Accept as RFC 9110 does: media ranges in any
+    # case, q=0 as "not acceptable".
+    results = []
+    for accept, want in (("TEXT/EVENT-STREAM", 406), ("text/event-stream, application/json;q=0", 406),
+                         ("text/event-stream, application/json;q=0.5", 200), ("text/event-stream, */*", 200)):
+        status, _, data, _ = t.request("POST", "/api/v1/solve", SMALL_SOLVE, headers={"Accept": accept})
+        expect(status == want, f"Accept {accept!r}: {status} {data[:120]!r}")
+        results.append(f"{accept!r} {status}")
+    return ", ".join(results)
+
+
 def render_iterates_output_cap(t):
     # A render of a 10 000-iteration solve of the 128-link chain would keep 10 001 iterates of 11 x 1408: the
     # JSON route's cap (--max-output-values) refuses it at once, as it refuses the same solve's iterates.
@@ -1287,7 +1299,7 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
            bad_continuation, bad_predictor, deadline_inside_continuation, bad_multistart,
            deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address, deadline_within_a_tenth,
-           parameter_renders_one_address, render_iterates_output_cap]
+           parameter_renders_one_address, render_iterates_output_cap, accept_by_range_and_quality]
 # Attacks that measure the servers' processes (CPU, memory): they need --server-bin (both modes).
 CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests, six_worst_case_programs,
                program_on_ninety_bodies, body_programs_leave_nothing]
