@@ -8,6 +8,11 @@
 //   Chain_DenseVsSparse/<k>      its first 8 steps with the Newton matrix factored dense (LU on the dense
 //                                matrix) and structured (the automatic choice: sparse LU), same run: dense_over_sparse
 //                                is their CPU ratio, and both must land on the same y (to 1e-10 relative).
+//   Program_DerivativeOnBodies   dg_y's matrix of a user's program (g = 0*y) on (SE(3) x R^6)^k, k = 8, 32, 90:
+//                                per k the peak heap of one dg_matrix, the program's reported workspace and their
+//                                ratio; heap_exponent is the peak's fitted on k, matrix_exponent the peak's in units
+//                                of the (11k)^2 entries of the one matrix the program reads (0: the derivative costs
+//                                a fixed number of those matrices, however many its 12k directions).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -22,6 +27,7 @@
 #include "core/integrate.hpp"
 #include "core/order_fit.hpp"
 #include "core/solvers/newton_step.hpp"
+#include "core/user_field/user_vector_field.hpp"
 
 namespace {
 
@@ -94,8 +100,34 @@ void Chain_DenseVsSparse(benchmark::State& state, Integrator integrator) {
                  std::string(to_string(b.linear_solver.value_or(Factorization::gmres))));
 }
 
+void Program_DerivativeOnBodies(benchmark::State& state) {
+  const std::vector<int> bodies{8, 32, 90};  // 90: the most bodies a program takes (10^6 entries per value)
+  std::vector<double> ks, peak, per_matrix;
+  for (auto _ : state) {
+    ks.clear(), peak.clear(), per_matrix.clear();
+    for (int k : bodies) {
+      const SE3xR6PowerGroup group(k);
+      const auto program = user_field::compile("g = 0*y", 11 * k, {});
+      const UserVectorField<SE3xR6PowerGroup> field(group, program);
+      const SE3xR6PowerGroup::Element y = group.random(3);
+      double zero = 0;
+      const double bytes = static_cast<double>(bench::peak_bytes_in([&] { zero = field.dg_matrix(group, y).norm(); }));
+      if (zero != 0) state.SkipWithError("the derivative of 0*y is not 0");
+      const double reported = program->workspace_bytes(group.dim());
+      const std::string name = std::to_string(k);
+      state.counters["peak_heap_kib_k" + name] = bytes / 1024;
+      state.counters["reported_kib_k" + name] = reported / 1024;
+      state.counters["peak_over_reported_k" + name] = bytes / reported;
+      ks.push_back(k), peak.push_back(bytes), per_matrix.push_back(bytes / (121.0 * k * k * sizeof(double)));
+    }
+  }
+  state.counters["heap_exponent"] = fitted_order(ks, peak).value_or(NAN);
+  state.counters["matrix_exponent"] = fitted_order(ks, per_matrix).value_or(NAN);
+}
+
 }  // namespace
 
+BENCHMARK(Program_DerivativeOnBodies)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_Scaling, dirk_cg2, Integrator::dirk_cg2)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_Scaling, rkmk_radau3, Integrator::rkmk_radau3)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_DenseVsSparse, dirk_cg2, Integrator::dirk_cg2)

@@ -1,5 +1,7 @@
 #include "server/api_handlers.hpp"
 
+#include <malloc.h>
+
 #include <cstdio>
 #include <set>
 
@@ -12,6 +14,7 @@
 #include "server/http_validators.hpp"
 #include "server/output_limits.hpp"
 #include "server/query_params.hpp"
+#include "server/request_limits.hpp"
 #include "server/render_requests.hpp"
 #include "server/routes.hpp"
 #include "server/static_files.hpp"
@@ -28,9 +31,16 @@ class ApiHandlers::Slot {
   ~Slot() {
     if (streaming_) owner_.metrics_.stream_finished();
     owner_.metrics_.work_finished();
-    const std::lock_guard<std::mutex> lock(owner_.slots_mutex_);
-    --owner_.slots_in_use_;
-    if (--owner_.slots_per_client_[client_] == 0) owner_.slots_per_client_.erase(client_);
+    bool last = false;
+    {
+      const std::lock_guard<std::mutex> lock(owner_.slots_mutex_);
+      last = --owner_.slots_in_use_ == 0;
+      if (--owner_.slots_per_client_[client_] == 0) owner_.slots_per_client_.erase(client_);
+    }
+    // glibc keeps what a request freed in the arena of the thread that ran it (one per worker thread, up to 8 per
+    // core), and hands back only the top of each heap: the memory a large request took stays resident on its
+    // worker. The last request to finish returns every arena's free pages, so the idle server is at its floor.
+    if (last) malloc_trim(0);
   }
   void mark_streaming() {
     streaming_ = true;
@@ -139,8 +149,7 @@ template <class Request>
 Request ApiHandlers::validated(const json& body, Request (*parse)(const json&, const Limits&)) const {
   Request request = parse(body, options_.limits);
   validate(request);
-  if constexpr (requires { fit_output(request, options_.output); }) fit_output(request, options_.output);
-  if constexpr (requires { check_output(request, options_.output); }) check_output(request, options_.output);
+  apply_output_limits(request, options_.output);
   return request;
 }
 
@@ -316,15 +325,14 @@ HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_sta
 HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds) {
   // Asked for Server-Sent Events alone, a POST route has nothing it may send: it answers JSON or NDJSON.
   const std::string& accept = req.header("Accept");
-  if (!sse && accept.find("text/event-stream") != std::string::npos &&
-      accept.find("application/json") == std::string::npos && accept.find("application/x-ndjson") == std::string::npos &&
-      accept.find("*/*") == std::string::npos)
+  const bool ndjson = accept_quality(accept, "application/x-ndjson", true) > 0;
+  if (!sse && accept_quality(accept, "text/event-stream", true) > 0 && accept_quality(accept, "application/json") == 0 &&
+      accept_quality(accept, "application/x-ndjson") == 0)
     throw ApiError(406, "not_acceptable", "",
                    "this route answers application/json, or streams application/x-ndjson; Server-Sent Events are "
                    "GET /api/v1/solve/events");
   const json body = request_json(req);  // parsing only: no compiling, no evaluating before the gate
   auto slot = acquire_slot(req);
-  const bool ndjson = req.header("Accept").find("application/x-ndjson") != std::string::npos;
   const auto token = make_token(budget_seconds, req);
   // Making the job validates the request, which compiles and evaluates a user's program: under the slot and the
   // token, yet before a stream's status line, so that its refusals stay plain 400/422 answers.
@@ -402,12 +410,13 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   const bool cacheable = req.method == "GET";
   const std::string etag = cacheable ? content_etag(build_id() + " " + req.path + " " + dump(body)) : "";
   if (cacheable && none_match_fails(req, etag, false)) return not_modified(etag, kRenderCacheControl);
+  // The slot before anything costly is parsed (a parameter's expression, a finished sweep), as on the JSON routes.
+  const std::shared_ptr<Slot> slot = acquire_slot(req);
   const auto token_ptr = make_token(budget_seconds, req);
   const CancellationToken& token = *token_ptr;
   const CancellationScope scope(&token);
-  std::shared_ptr<Slot> slot;
   RenderHooks hooks;
-  hooks.before_work = [&] { slot = acquire_slot(req); };
+  hooks.output = options_.output;
   hooks.keep_going = [&](int index) {
     progress(index);
     return !token.cancelled();

@@ -440,12 +440,14 @@ json with_power_shorthand(const json& body) {
                        "group " + name + " must name " + std::to_string(fields::n.min) + " to " +
                            std::to_string(max.value_or(fields::n.min)) + " bodies (" + family_name + " with n = k)");
   json out = body;
-  if (out.contains("n") && !out["n"].is_null() && out["n"] != json(k))
+  // A sweep's n is a list: [k] says the same.
+  const bool listed = out.contains("n") && out["n"] == json::array({k});
+  if (out.contains("n") && !out["n"].is_null() && out["n"] != json(k) && !listed)
     throw RequestError(RequestError::Kind::unprocessable, "n",
-                       "group " + name + " has n = " + digits + ": n must be " + digits + " or absent, got " +
-                           out["n"].dump());
+                       "group " + name + " has n = " + digits + ": n must be " + digits + " (or [" + digits +
+                           "] on a sweep) or absent, got " + out["n"].dump());
   out["group"] = family_name;
-  out["n"] = k;
+  if (!listed) out["n"] = k;
   return out;
 }
 
@@ -466,6 +468,13 @@ json with_implied_group(const json& body) {
   return body;  // not a problem's name: its row refuses it
 }
 
+// The group names a registered family that bounds its index itself (max_index: SExR^k's bodies), so that the
+// server's --max-n does not apply to it.
+bool family_bounds_index(const std::string& group) {
+  const auto names = registered_group_names();
+  return std::find(names.begin(), names.end(), group) != names.end() && group_family(group).max_index().has_value();
+}
+
 // A route's request: every row the route takes, read into the request struct.
 template <class Request>
 Request read_request(const json& given, fields::Route route, const Limits& limits) {
@@ -475,12 +484,8 @@ Request read_request(const json& given, fields::Route route, const Limits& limit
   r.n = &part<ProblemSpec>(request)->n;
   r.group = &part<ProblemSpec>(request)->group;
   r.n_given = body.is_object() && body.contains("n") && !body["n"].is_null();
-  if (body.is_object() && body.contains("group") && body["group"].is_string()) {
-    const std::string& name = body["group"].get_ref<const std::string&>();
-    const auto names = registered_group_names();
-    r.family_bounds_n = std::find(names.begin(), names.end(), name) != names.end() &&
-                        group_family(name).max_index().has_value();
-  }
+  if (body.is_object() && body.contains("group") && body["group"].is_string())
+    r.family_bounds_n = family_bounds_index(body["group"].get_ref<const std::string&>());
   try {
     read_object(body, "", fields::fields_of(route), request, r);
   } catch (const RequestError& e) {
@@ -560,7 +565,7 @@ SweepRequest sweep_request_from_json(const json& body, const Limits& limits) {
   // The defaults count too; n's default (the paper's 2..15) must also respect the server's N cap.
   const SweepRequest full = with_defaults(r);
   for (int n : full.n) {
-    if (n > limits.max_n) fail("n", fields::n.message("n", limits.max_n));
+    if (n > limits.max_n && !family_bounds_index(full.problem.group)) fail("n", fields::n.message("n", limits.max_n));
   }
   const double cells = static_cast<double>(full.methods.size()) * static_cast<double>(full.n.size()) *
                        static_cast<double>(full.h.size());

@@ -52,6 +52,13 @@ void fit_output(IntegrateRequest& r, const OutputLimits& limits) {
   if (room >= 1 && room < r.max_steps) r.max_steps = static_cast<int>(room);
 }
 
+int fitting_frames(const IntegrateRequest& r, int wanted, const OutputLimits& limits) {
+  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / *r.h);
+  const double per_frame = (r.adaptive() ? 2.0 : 1.0) * state_values(r.problem);
+  const double room = std::floor((static_cast<double>(limits.max_values) - steps * kStepValues) / per_frame) - 2;
+  return std::max(r.frames, static_cast<int>(std::min<double>(wanted, room)));
+}
+
 void check_output(const SweepRequest& r, const OutputLimits& limits) {
   const double cells = static_cast<double>(r.methods.size()) * static_cast<double>(r.n.size()) * static_cast<double>(r.h.size());
   refuse_beyond(cells * kCellValues, limits, "h", "this sweep grid");

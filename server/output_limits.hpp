@@ -27,6 +27,15 @@ void check_output(const IntegrateRequest& request, const OutputLimits& limits);
 void fit_output(IntegrateRequest& request, const OutputLimits& limits);
 void check_output(const SweepRequest& request, const OutputLimits& limits);
 void check_output(const BasinRequest& request, const OutputLimits& limits);
+// The caps a request's type has, an integration's output fitted to them first (a work-precision diagram has
+// none of its own): for the JSON routes and for what a picture keeps.
+template <class Request>
+void apply_output_limits(Request& request, const OutputLimits& limits) {
+  if constexpr (requires { fit_output(request, limits); }) fit_output(request, limits);
+  if constexpr (requires { check_output(request, limits); }) check_output(request, limits);
+}
+// The most states up to `wanted` an integration may keep within the cap beside its steps (at least its frames).
+int fitting_frames(const IntegrateRequest& request, int wanted, const OutputLimits& limits);
 // width x height of a render request, where both are given as integers (else the parser judges them).
 void check_image_pixels(const json& body, const OutputLimits& limits);
 

@@ -100,8 +100,10 @@ std::vector<std::vector<BodyFrame>> bodies(const ProblemSpec& p, const std::vect
   return out;
 }
 
-void before_work(const RenderHooks& hooks) {
-  if (hooks.before_work) hooks.before_work();
+// The caps of the request's JSON route on what the picture keeps.
+template <class Request>
+void cap_output(Request& request, const RenderHooks& hooks) {
+  if (hooks.output) apply_output_limits(request, *hooks.output);
 }
 
 bool keep_going(const RenderHooks& hooks, int index) { return !hooks.keep_going || hooks.keep_going(index); }
@@ -339,8 +341,8 @@ Shown run_shown(json& request, bool integration, const Limits& limits, const Ren
     SolveRequest r = solve_request_from_json(request, limits);
     check_bodies(r.problem);
     r.solver.include_iterates = true;
-    before_work(hooks);
     validate(r);
+    cap_output(r, hooks);
     SolveResult result = solve_validated(r, [&](const TraceRecord& t) { return keep_going(hooks, t.iteration); });
     if (hooks.on_solve) hooks.on_solve(result);
     if (result.status == Status::cancelled) throw RenderCancelled{};
@@ -360,10 +362,11 @@ Shown run_shown(json& request, bool integration, const Limits& limits, const Ren
   check_bodies(r.problem);
   if (r.frames < 1) throw FieldError("invalid_field", "frames", "frames must be at least 1 to draw a trajectory");
   shown.frames = r.frames;
-  r.frames = std::max(r.frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, path_samples * r.frames}));
+  const int denser = std::max(r.frames, std::min({limits.max_frames, IntegrateRequest::kMaxFrames, path_samples * r.frames}));
+  r.frames = hooks.output ? fitting_frames(r, denser, *hooks.output) : denser;
   r.reference = false;  // the picture needs no global error
-  before_work(hooks);
   validate(r);
+  cap_output(r, hooks);
   bool stopped = false;
   IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
@@ -489,12 +492,10 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
     const SweepResult result = sweep_result_from_json(request["sweep"], limits);
     request.erase("sweep");
     if (request.empty()) {
-      before_work(hooks);
       return renderer.heatmap_png(result, options, heatmap_caption(result, nullptr, options.metric), format);
     }
     // The request the cells came from, for the title: it must at least hold every cell in its grid.
     SweepRequest r = sweep_request_from_json(request, limits);
-    before_work(hooks);
     validate(r);
     for (std::size_t i = 0; i < result.cells.size(); ++i) {
       const SweepCell& c = result.cells[i];
@@ -508,8 +509,8 @@ std::vector<unsigned char> render_heatmap(json request, const Limits& limits, re
     return renderer.heatmap_png(result, options, heatmap_caption(result, &r, options.metric), format);
   }
   SweepRequest r = sweep_request_from_json(request, limits);
-  before_work(hooks);
   validate(r);
+  cap_output(r, hooks);
   int index = 0;
   bool stopped = false;
   const SweepResult result = sweep_validated(r, [&](const SweepCell& cell) {
@@ -529,8 +530,8 @@ std::vector<unsigned char> render_basins(json request, const Limits& limits, ren
   const int height = take_int(request, "height", 0, true);
   const render::ImageFormat format = take_format(request);
   BasinRequest r = basin_request_from_json(request, limits);
-  before_work(hooks);
   validate(r);
+  cap_output(r, hooks);
   int index = 0;
   bool stopped = false;
   const BasinResult map = basins_validated(r, [&](const BasinRow& row, const std::vector<BasinRoot>&) {
@@ -556,7 +557,6 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   const int height = take_int(request, "height", kWorkPrecisionFigure.height, false);
   const render::ImageFormat format = take_format(request);
   WorkPrecisionRequest r = work_precision_request_from_json(request, limits);
-  before_work(hooks);
   validate(r);
   int index = 0;
   bool stopped = false;
@@ -577,8 +577,8 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
   const render::ImageFormat format = take_format(request);
   IntegrateRequest r = integrate_request_from_json(request, limits);
   r.reference = false;  // the picture needs no global error
-  before_work(hooks);
   validate(r);
+  cap_output(r, hooks);
   if (!has_invariants(r.problem))
     throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body, "
                                                     "heavy-top and chain at damping 0 do)");
@@ -610,7 +610,6 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
     }
   }
   SolveRequest base = solve_request_from_json(request, limits);
-  before_work(hooks);
   validate(base);
   std::vector<render::ResidualRun> runs;
   int index = 0;

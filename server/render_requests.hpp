@@ -9,13 +9,16 @@
 #include "core/fields.hpp"
 #include "core/group_registry.hpp"
 #include "server/json_codec.hpp"
+#include "server/output_limits.hpp"
 
 namespace lienewton::render { class Renderer; }
 
 namespace lienewton::service {
 
 struct RenderHooks {
-  std::function<void()> before_work;                         // before validation (it compiles g) and any solving: take a slot
+  // The JSON routes' caps on what a result holds, applied to what a picture keeps (iterates, frames, cells,
+  // pixels); none: uncapped (the CLI). The server takes its work slot before a render parses anything.
+  std::optional<OutputLimits> output;
   std::function<bool(int index)> keep_going;                 // per iteration/step/cell; false cancels
   std::function<void(const SweepCell&)> on_cell;             // sweep cells, for metrics
   std::function<void(const SolveResult&)> on_solve;          // finished solve, for metrics

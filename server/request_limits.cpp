@@ -1,6 +1,8 @@
 #include "server/request_limits.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <random>
 
 namespace lienewton::service {
@@ -74,6 +76,36 @@ std::optional<Rejection> check_same_origin(const HttpRequest& req) {
     }
   }
   return std::nullopt;
+}
+
+double accept_quality(std::string_view accept, std::string_view type, bool exact) {
+  const std::string wanted = lower(std::string(type));
+  const std::string family = wanted.substr(0, wanted.find('/')) + "/*";
+  int best = -1;  // 2: type/subtype, 1: type/*, 0: */*
+  double quality = 0;
+  std::size_t start = 0;
+  while (start <= accept.size()) {
+    const std::size_t comma = std::min(accept.find(',', start), accept.size());
+    const std::string range(accept.substr(start, comma - start));
+    start = comma + 1;
+    const std::string name = media_type(range);
+    const int rank = name == wanted ? 2 : exact ? -1 : name == family ? 1 : name == "*/*" ? 0 : -1;
+    if (rank <= best) continue;
+    double q = 1;
+    for (std::size_t semi = range.find(';'); semi != std::string::npos; semi = range.find(';', semi + 1)) {
+      std::string parameter = lower(range.substr(semi + 1, range.find(';', semi + 1) - semi - 1));
+      parameter.erase(std::remove_if(parameter.begin(), parameter.end(), [](char c) { return c == ' ' || c == '\t'; }),
+                      parameter.end());
+      if (parameter.rfind("q=", 0) == 0) {
+        char* end = nullptr;
+        q = std::strtod(parameter.c_str() + 2, &end);
+        if (end == parameter.c_str() + 2 || *end != '\0' || !(q >= 0 && q <= 1)) q = 0;  // malformed: not acceptable
+      }
+    }
+    best = rank;
+    quality = q;
+  }
+  return quality;
 }
 
 bool valid_request_id(std::string_view id) {

@@ -450,17 +450,26 @@ class Compiler {
   }
 
   // The value of a program that reads no y and no t: its last statement's (or g's), folded when compiled.
+  // A parameter's value is its text's last statement, an expression; those before it may only name values for it
+  // ("c = cos(pi); [c; 2*c]"). Another expression before it ("1,2", "2\n3") or an assignment last ("a = 2") would
+  // leave a value the user did not write as the value.
   MatrixXd constant_result() {
-    int result = -1, result_statement = -1;
+    if (s_.statements.empty()) fail_at(1, 1, "the value is empty: write a number, a matrix or an expression of them");
+    const int last = s_.statements.back();
     for (int st : s_.statements) {
       const Node& nd = node(st);
-      result = expr(nd.kind == NodeKind::assign ? nd.kids[0] : st);
-      result_statement = st;
+      if (st != last && nd.kind != NodeKind::assign)
+        fail(st, "a parameter's value is one expression, and another follows this one (a matrix's entries go "
+                 "inside brackets: [1, 2] or [1 2; 3 4])");
+      if (st == last && nd.kind == NodeKind::assign)
+        fail(st, "a parameter's value ends with an expression, not an assignment: write the value alone");
+      const int result = expr(nd.kind == NodeKind::assign ? nd.kids[0] : st);
       if (nd.kind == NodeKind::assign) names_[nd.text] = result;
+      if (st != last) continue;
+      if (!fixed(result)) fail(st, "a parameter is a constant: its value cannot read y or t");
+      return value(result);
     }
-    if (result < 0) fail_at(1, 1, "the value is empty: write a number, a matrix or an expression of them");
-    if (!fixed(result)) fail(result_statement, "a parameter is a constant: its value cannot read y or t");
-    return value(result);
+    fail_at(1, 1, "the value is empty");  // not reached: the last statement returned
   }
 
   std::shared_ptr<const Program> run() {
@@ -1133,7 +1142,7 @@ void Program::form_derivatives(Workspace& ws) const {
 
 namespace {
 // Direction d's tangent in a stacked matrix of tangents ((rows k) x cols).
-Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> direction(MatrixXd& stacked, Eigen::Index rows, Eigen::Index d) {
+Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> stacked_direction(MatrixXd& stacked, Eigen::Index rows, Eigen::Index d) {
   // An empty value's tangents have no storage: no offset from its null data.
   double* const data = stacked.size() == 0 ? stacked.data() : stacked.data() + rows * d;
   return {data, rows, stacked.cols(), Eigen::OuterStride<>(stacked.rows())};
@@ -1142,9 +1151,6 @@ Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> direction(MatrixXd& stacked, Eigen
 // value is one product of this wide matrix, as a product from the right is one of the stacked one.
 Eigen::Map<MatrixXd> side_by_side(MatrixXd& stacked, Eigen::Index rows, Eigen::Index k) {
   return {stacked.data(), rows, stacked.cols() * k};  // k directions of an empty value are still k blocks wide
-}
-Eigen::Map<const MatrixXd> side_by_side(const Program::In& stacked, Eigen::Index rows) {
-  return {stacked.data(), rows, rows == 0 ? 0 : stacked.size() / rows};
 }
 }  // namespace
 
@@ -1174,8 +1180,8 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
     case Op::neg: out = -dx(0); return;
     case Op::transpose: case Op::antisym: case Op::skew:
       for (Eigen::Index d = 0; d < k; ++d) {
-        const auto a = direction(dx(0), rows_[slot(0)], d);
-        auto t = direction(out, r, d);
+        const auto a = stacked_direction(dx(0), rows_[slot(0)], d);
+        auto t = stacked_direction(out, r, d);
         if (ins.op == Op::transpose) t = a.transpose();
         else if (ins.op == Op::antisym) t = a - a.transpose();
         else t = 0.5 * (a - a.transpose());
@@ -1204,12 +1210,12 @@ void Program::tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const
         ws.scratch_dx[j] = b.dx[j];  // zero
         continue;
       }
-      ws.scratch[j] = direction(dx(j), rows_[slot(j)], d);
+      ws.scratch[j] = stacked_direction(dx(j), rows_[slot(j)], d);
       ws.scratch_dx[j] = &ws.scratch[j];
     }
     ws.scratch_out.resize(r, c);
     apply(ins, b.x, *b.out, &ws.scratch_dx, &ws.scratch_out, *b.aux, true);
-    direction(out, r, d) = ws.scratch_out;
+    stacked_direction(out, r, d) = ws.scratch_out;
   }
 }
 
@@ -1217,14 +1223,27 @@ const MatrixXd& Program::tangent(const Workspace& ws, std::size_t s) const {
   return varies_[s] ? ws.tan[s] : zeros_.at({rows_[s], cols_[s]});
 }
 
+double Program::varying_elements() const {
+  double varying = 0;
+  for (std::size_t s = 0; s < rows_.size(); ++s)
+    if (varies_[s]) varying += double(rows_[s]) * double(cols_[s]);
+  return varying;
+}
+
+Eigen::Index Program::directions_per_pass(Eigen::Index k) const {
+  const double varying = varying_elements();
+  if (varying == 0 || k <= 1) return std::max<Eigen::Index>(k, 1);
+  return std::clamp<Eigen::Index>(static_cast<Eigen::Index>(kMaxStackedElements / varying), 1, k);
+}
+
 double Program::workspace_bytes(int directions) const {
-  double entries = 0, varying = 0, largest = 0;
+  double entries = 0, largest = 0;
   for (std::size_t s = 0; s < rows_.size(); ++s) {
     const double size = double(rows_[s]) * double(cols_[s]);
     if (varies_[s] || timed_[s]) entries += size;
-    if (varies_[s]) varying += size;
     largest = std::max(largest, size);
   }
+  const double varying = varying_elements();
   entries += varying;  // the tangents
   const auto size_of = [&](int s) { return double(rows_[static_cast<std::size_t>(s)]) * double(cols_[static_cast<std::size_t>(s)]); };
   for (const std::vector<Instruction>* code : {&code_, &time_code_})
@@ -1233,8 +1252,10 @@ double Program::workspace_bytes(int directions) const {
       if (ins.op == Op::left_div) entries += size_of(ins.in[0]);
       if (ins.op == Op::right_div) entries += size_of(ins.in[1]);
     }
-  const double stacked = varying * double(directions);
-  entries += (stacked <= kMaxStackedElements ? stacked : 0) + largest;  // and one direction's scratch
+  const double stacked = varying * double(directions_per_pass(std::max(directions, 1)));
+  const double square = double(n_) * double(n_);
+  // one pass's stacked tangents (none when a direction goes alone), one direction's scratch, the caller's matrices
+  entries += (stacked <= kMaxStackedElements ? stacked : 0) + largest + 4 * square;
   return entries * double(sizeof(double));
 }
 
@@ -1259,42 +1280,61 @@ void Program::eval_with_tangent(const In& y, double t, const In& dy, MatrixXd& g
   });
 }
 
-void Program::eval_along(const In& y, double t, const In& us, MatrixXd& dgs) const {
-  const Eigen::Index n = n_, k = us.rows() / n;
-  dgs.resize(n * k, n);
+void Program::eval_along(const In& y, double t, Eigen::Index k, const Direction& direction,
+                         const Derivative& derivative) const {
+  const Eigen::Index n = n_, per_pass = directions_per_pass(k);
+  const auto ys = static_cast<std::size_t>(y_slot_), r = static_cast<std::size_t>(result_);
   with_workspace([&](Workspace& ws) {
-    if (ws.stacked_k != k) {
-      double elements = 0;
-      for (std::size_t s = 0; s < rows_.size(); ++s)
-        if (varies_[s]) elements += double(rows_[s]) * double(cols_[s]) * double(k);
-      ws.stacked_fits = elements <= kMaxStackedElements;
-      ws.stacked.assign(rows_.size(), MatrixXd());
-      if (ws.stacked_fits)
-        for (std::size_t s = 0; s < rows_.size(); ++s)
-          if (varies_[s]) ws.stacked[s].resize(rows_[s] * k, cols_[s]);
-      ws.stacked_k = k;
-    }
-    if (!ws.stacked_fits) {  // one direction at a time: the values once, the later directions find them kept
-      MatrixXd dy;
-      for (Eigen::Index d = 0; d < k; ++d) {
-        dy.noalias() = y * us.middleRows(d * n, n);
-        const In in(dy);
-        run(y, t, &in, ws);
-        dgs.middleRows(d * n, n) = tangent(ws, static_cast<std::size_t>(result_));
+    MatrixXd dy(n, n), dg(n, n);
+    for (Eigen::Index first = 0; first < k; first += per_pass) {
+      const Eigen::Index passing = std::min(per_pass, k - first);
+      if (ws.stacked_k != passing) {
+        ws.stacked_fits = varying_elements() * double(passing) <= kMaxStackedElements;
+        ws.stacked.assign(rows_.size(), MatrixXd());
+        if (ws.stacked_fits)
+          for (std::size_t s = 0; s < rows_.size(); ++s)
+            if (varies_[s]) ws.stacked[s].resize(rows_[s] * passing, cols_[s]);
+        ws.stacked_k = passing;
       }
-      return;
+      if (!ws.stacked_fits) {  // one direction at a time: the values once, the later directions find them kept
+        for (Eigen::Index d = first; d < first + passing; ++d) {
+          direction(d, dy);
+          const In in(dy);
+          run(y, t, &in, ws);
+          derivative(d, tangent(ws, r));
+        }
+        continue;
+      }
+      run(y, t, nullptr, ws);
+      if (!ws.holds_derivatives) form_derivatives(ws);
+      for (Eigen::Index d = 0; d < passing; ++d) {
+        direction(first + d, dy);
+        if (varies_[ys]) stacked_direction(ws.stacked[ys], n, d) = dy;
+      }
+      for (std::size_t i = 0; i < code_.size(); ++i) {
+        if (cancellation_requested()) throw Cancelled{};
+        tangents_along(i, passing, ws);
+      }
+      for (Eigen::Index d = 0; d < passing; ++d) {
+        if (varies_[r]) dg = stacked_direction(ws.stacked[r], n, d);
+        else dg.setZero(n, n);  // g does not depend on y
+        derivative(first + d, dg);
+      }
     }
-    run(y, t, nullptr, ws);
-    if (!ws.holds_derivatives) form_derivatives(ws);
-    const auto ys = static_cast<std::size_t>(y_slot_), r = static_cast<std::size_t>(result_);
-    side_by_side(ws.stacked[ys], n, k).noalias() = y * side_by_side(us, n);
-    for (std::size_t i = 0; i < code_.size(); ++i) {
-      if (cancellation_requested()) throw Cancelled{};
-      tangents_along(i, k, ws);
+    // A thread keeps no more between requests than a small program's own workspace.
+    if (varying_elements() * double(ws.stacked_k) > kMaxCachedElements) {
+      ws.stacked.clear();
+      ws.stacked_k = -1;
     }
-    if (varies_[r]) dgs = ws.stacked[r];
-    else dgs.setZero();  // g does not depend on y
   });
+}
+
+void Program::eval_along(const In& y, double t, const In& dys, MatrixXd& dgs) const {
+  const Eigen::Index n = n_, k = dys.rows() / n;
+  dgs.resize(n * k, n);
+  eval_along(
+      y, t, k, [&](Eigen::Index d, MatrixXd& dy) { dy = dys.middleRows(d * n, n); },
+      [&](Eigen::Index d, const MatrixXd& dg) { dgs.middleRows(d * n, n) = dg; });
 }
 
 }  // namespace lienewton::user_field

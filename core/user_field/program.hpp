@@ -7,6 +7,7 @@
 // No loops, no user functions, no I/O: a program's cost is bounded before it ever runs.
 #include <Eigen/Dense>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -22,7 +23,9 @@ using Parameters = std::map<std::string, Eigen::MatrixXd>;
 // The bounds on a program, so a hostile one answers 422 before it runs.
 inline constexpr std::size_t kMaxSourceBytes = 64 * 1024;
 inline constexpr int kMaxNodes = 20000;          // syntax tree nodes
-inline constexpr int kMaxNesting = 128;  // levels of parentheses, brackets and unary operators (two per parenthesis)
+// The parser's depth: 2 for a statement, 2 per parenthesis or call, 3 per bracket, 1 per unary sign (63 calls, 42
+// brackets deep).
+inline constexpr int kMaxNesting = 128;
 inline constexpr double kMaxElements = 1e6;      // entries of one value
 inline constexpr double kMaxTotalElements = 4e6; // entries of all values together (and as many tangents)
 inline constexpr double kMaxCost = 2e9;          // estimated flops of one evaluation of g and its tangent
@@ -57,16 +60,30 @@ class Program {
   void eval(const In& y, double t, Eigen::MatrixXd& g) const;
   // g(t, y) and its derivative along dy: dg = d/ds g(t, y + s dy) at s = 0.
   void eval_with_tangent(const In& y, double t, const In& dy, Eigen::MatrixXd& g, Eigen::MatrixXd& dg) const;
-  // dg_y's matrix on a basis U_1 ... U_k of an algebra: the derivatives of g(t, .) at y along y U_d, stacked as
-  // us is (n k x n, rows (d-1) n ... d n - 1 hold U_d; dgs alike). One pass for the values, then one for the
-  // tangents of all k directions together, each product rule one product of wide matrices.
-  void eval_along(const In& y, double t, const In& us, Eigen::MatrixXd& dgs) const;
+  // Derivatives of g(t, .) at y along k directions dy_1 ... dy_k (on an algebra's basis U_d: dy_d = y U_d), in
+  // passes of directions_per_pass(k) so that no more are held at once: direction(d, dy) writes dy_d (n x n),
+  // derivative(d, dg) takes its derivative, both in order d = 0 ... k-1. The values once; per pass one tangent
+  // pass of all its directions together (each product rule one product of wide matrices), or one direction at a
+  // time when even one direction's stacked tangents would be too large.
+  using Direction = std::function<void(Eigen::Index, Eigen::MatrixXd&)>;
+  using Derivative = std::function<void(Eigen::Index, const Eigen::MatrixXd&)>;
+  void eval_along(const In& y, double t, Eigen::Index k, const Direction& direction,
+                  const Derivative& derivative) const;
+  // The same for directions given stacked (n k x n, rows (d-1) n ... d n - 1 hold dy_d; dgs alike).
+  void eval_along(const In& y, double t, const In& dys, Eigen::MatrixXd& dgs) const;
+  Eigen::Index directions_per_pass(Eigen::Index k) const;
   std::size_t instructions() const;
   double cost() const { return cost_; }  // estimated flops of eval_with_tangent
   // Bytes one evaluating thread's workspace holds: the values of the slots that depend on y or t, the tangents of
-  // those that depend on y, what a tangent pass keeps (f'(a), inverses), and eval_along's tangents of `directions`
-  // directions. Constants are the program's own, shared by all threads, and not counted.
+  // those that depend on y, what a tangent pass keeps (f'(a), inverses), eval_along's stacked tangents of one pass
+  // of `directions` directions, and the n x n matrices its caller holds (y, a direction, a derivative and its
+  // check against the algebra). Constants are the program's own, shared by all threads, and not counted.
   double workspace_bytes(int directions) const;
+
+  // Whether a thread keeps this program's workspace between evaluations (small programs: a solve calls g and dg
+  // thousands of times); a larger one's is sized per call and freed after it, so no thread holds it after its
+  // request.
+  bool kept_per_thread() const { return elements_ <= kMaxCachedElements; }
 
   struct Workspace;
 
@@ -77,8 +94,10 @@ class Program {
   void run(const In& y, double t, const In* dy, Workspace& ws) const;
   void form_derivatives(Workspace& ws) const;
   void tangents_along(std::size_t i, Eigen::Index k, Workspace& ws) const;
-  // Entries of the tangents of all directions together above which eval_along takes one direction at a time.
+  // Entries of the stacked tangents of one pass of eval_along: a pass takes as many directions as fit, at least
+  // one, and a single direction beyond it goes through the one-direction tangents.
   static constexpr double kMaxStackedElements = 1 << 21;
+  double varying_elements() const;
   void prepare(Workspace& ws) const;
   // The tangent of slot s after a run: its own, or a shared zero for a slot that does not depend on y.
   const Eigen::MatrixXd& tangent(const Workspace& ws, std::size_t s) const;

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "../problem_spec.hpp"
+#include "../groups/operator_columns.hpp"
 #include "../problems.hpp"
 #include "algebra_defect.hpp"
 #include "program.hpp"
@@ -24,38 +25,37 @@ class UserVectorField final : public VectorField<G> {
   using typename VectorField<G>::Element;
   using typename VectorField<G>::Vector;
   UserVectorField(G group, std::shared_ptr<const user_field::Program> program)
-      : group_(std::move(group)), program_(std::move(program)) {
-    const Eigen::Index n = program_->n();
-    basis_.resize(n * group_.dim(), n);
-    for (int i = 0; i < group_.dim(); ++i)
-      basis_.middleRows(i * n, n) = as_matrix(Element(group_.hat(basis_vector(group_, i))));
-  }
+      : group_(std::move(group)), program_(std::move(program)) {}
 
   // The program reads t as it runs: an integrator sets each stage's time, a solve leaves it at 0.
   void set_time(double t) override { t_ = t; }
-  // The results land in per-thread matrices, sized once: a solve calls g and dg thousands of times.
   Vector g(const Element& y) const override {
-    thread_local Eigen::MatrixXd value;
-    program_->eval(as_matrix(y), t_, value);
-    return in_algebra(value);
+    return with_results([&](Eigen::MatrixXd& value, Eigen::MatrixXd&) {
+      program_->eval(as_matrix(y), t_, value);
+      return in_algebra(value);
+    });
   }
   Vector dg(const Element& y, const Vector& u) const override {
     const Element dir = group_.hat(u);
-    thread_local Eigen::MatrixXd value, tangent;
-    program_->eval_with_tangent(as_matrix(y), t_, as_matrix(Element(group_.tangent(y, dir))), value, tangent);
-    return in_algebra(tangent);
-  }
-  // dg_y's matrix on G's basis: the program's values once, then the tangents along y U for every basis
-  // element U together (tangent(y, U) is y U on G's matrices).
-  typename G::Operator dg_matrix(const G& group, const Element& y) const override {
-    thread_local Eigen::MatrixXd dgs, block;
-    program_->eval_along(as_matrix(y), t_, basis_, dgs);
-    const Eigen::Index n = program_->n();
-    Eigen::Index i = 0;  // operator_from_columns asks for the columns in order
-    return operator_from_columns(group, [&](const Vector&) -> Vector {
-      block = dgs.middleRows(n * i++, n);
-      return in_algebra(block);
+    return with_results([&](Eigen::MatrixXd& value, Eigen::MatrixXd& tangent) {
+      program_->eval_with_tangent(as_matrix(y), t_, as_matrix(Element(group_.tangent(y, dir))), value, tangent);
+      return in_algebra(tangent);
     });
+  }
+  // dg_y's matrix on G's basis: the program's values once, then its tangents along y U for the basis elements U
+  // a pass at a time (tangent(y, U) is y U on G's matrices), each formed when its pass asks for it, so that no
+  // more than a pass's directions are held (on a system of k bodies a stack of all would be k^3 entries).
+  typename G::Operator dg_matrix(const G& group, const Element& y) const override {
+    OperatorColumns<G> columns(group);
+    program_->eval_along(
+        as_matrix(y), t_, group.dim(),
+        [&](Eigen::Index d, Eigen::MatrixXd& dy) {
+          dy = as_matrix(Element(group_.tangent(y, group_.hat(basis_vector(group_, static_cast<int>(d))))));
+        },
+        [&](Eigen::Index d, const Eigen::MatrixXd& derivative) {
+          columns.set(static_cast<int>(d), in_algebra(derivative));
+        });
+    return columns.take();
   }
   // The first value found off the algebra (its defect; 0 while none was).
   double defect() const { return defect_.load(); }
@@ -73,16 +73,27 @@ class UserVectorField final : public VectorField<G> {
   }
   Vector in_algebra(const Eigen::MatrixXd& m) const {
     const Vector v = group_.vee(program_element(group_, m));
-    const double defect = (as_matrix(Element(group_.hat(v))) - m).norm();  // algebra_defect, vee taken once
+    const double defect = program_distance(group_, Element(group_.hat(v)), m);  // algebra_defect, vee taken once
     if (!std::isfinite(defect) || within_rounding(defect, m)) return v;
     double none = 0;
     defect_.compare_exchange_strong(none, defect);
     return Vector::Constant(v.size(), std::numeric_limits<double>::quiet_NaN());
   }
 
+  // f(value, tangent) on matrices for the program's results: a small program's per thread, sized once (a solve
+  // calls g and dg thousands of times); a larger one's the call's own, so no thread holds them after the request.
+  template <class F>
+  Vector with_results(F&& f) const {
+    if (program_->kept_per_thread()) {
+      thread_local Eigen::MatrixXd value, tangent;
+      return f(value, tangent);
+    }
+    Eigen::MatrixXd value, tangent;
+    return f(value, tangent);
+  }
+
   G group_;
   std::shared_ptr<const user_field::Program> program_;
-  Eigen::MatrixXd basis_;  // G's basis of its algebra as matrices, stacked (n dim x n)
   mutable std::atomic<double> defect_{0};
   double t_ = 0;
 };

@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -22,6 +24,7 @@
 #include "server/http_errors.hpp"
 #include "server/json_codec.hpp"
 #include "server/cli/command_help.hpp"
+#include "server/cli/output_file.hpp"
 #include "server/cli/paper_figures.hpp"
 #include "server/cli/progress_line.hpp"
 #include "server/cli/table_output.hpp"
@@ -67,7 +70,8 @@ constexpr const char* kUsage =
     "nothing on it (a terminal, </dev/null) a command runs its defaults and the flags given.\n"
     "Long commands show their progress on stderr when it is a terminal (--quiet: not).\n"
     "--pretty indents the JSON result; --out FILE writes the answer to FILE (whole, or not at all) instead of stdout,\n"
-    "which never takes a picture when it is a terminal.\n"
+    "which never takes a picture when it is a terminal; FILE keeps its permissions, and a FIFO or symbolic link is\n"
+    "refused unless --out-through is given (then written into, or through to the file it names).\n"
     "--stream (solve, sweep, basins, integrate, work-precision) prints the records of the HTTP API's NDJSON stream on\n"
     "stdout as they come, one JSON line each, the result (a basin map's summary) last: {\"type\": ...} as /openapi.json's\n"
     "*StreamRecord. --format csv|table prints the result's rows instead of its JSON: a solve's trace, a sweep's\n"
@@ -108,26 +112,26 @@ int fail(int status, std::string_view code, std::string_view field, std::string_
   return status;
 }
 
-// The answer, on stdout or, with --out FILE, into FILE: written to a temporary beside it and renamed, so that FILE
-// is either the whole answer or untouched.
-void emit(const std::string& bytes, const std::optional<std::string>& out) {
+// The answer, on stdout or, with --out FILE, into FILE (cli/output_file.hpp: whole or untouched).
+void emit(const std::string& bytes, const std::optional<std::string>& out, bool through) {
   if (!out) {
     std::fwrite(bytes.data(), 1, bytes.size(), stdout);
     std::fflush(stdout);
     return;
   }
-  const std::string part = *out + ".part-" + std::to_string(getpid());
-  {
-    std::ofstream file(part, std::ios::binary);
-    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!file.flush()) {
-      std::remove(part.c_str());
-      throw ApiError(500, "output_failed", "out", "cannot write " + *out);
-    }
-  }
-  if (std::rename(part.c_str(), out->c_str()) != 0) {
-    std::remove(part.c_str());
-    throw ApiError(500, "output_failed", "out", "cannot write " + *out);
+  cli::write_output_file(*out, bytes, through);
+}
+
+// All of stdin; a read error (stdin a directory, an I/O error) is one, not an empty request.
+std::string read_stdin() {
+  std::string text;
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = read(STDIN_FILENO, buffer, sizeof buffer);
+    if (n == 0) return text;
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw ApiError(500, "input_failed", "", std::string("cannot read stdin: ") + std::strerror(errno));
+    text.append(buffer, static_cast<std::size_t>(n));
   }
 }
 
@@ -190,6 +194,7 @@ struct Flags {
   bool stream = false;             // --stream: NDJSON records on stdout as they come
   Format format = Format::json;    // --format json|csv|table
   std::optional<std::string> out;  // --out FILE
+  bool out_through = false;        // --out-through: into a FIFO, or through a symbolic link
 };
 
 std::vector<const fields::Field*> command_fields(const std::string& command, const std::string& sub);
@@ -201,6 +206,10 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--pretty" || args[i] == "--quiet") {
       (args[i] == "--pretty" ? out.pretty : out.quiet) = true;
+      continue;
+    }
+    if (args[i] == "--out-through") {
+      out.out_through = true;
       continue;
     }
     if (args[i] == "--out") {
@@ -231,7 +240,7 @@ Flags read_flags(const std::vector<std::string>& args, const std::string& comman
         if (p.name == name && p.takes(picture_route_of(sub))) f = &p;
     }
     if (!f) {
-      std::vector<std::string> names{"pretty", "quiet", "out", "stream", "format"};
+      std::vector<std::string> names{"pretty", "quiet", "out", "out-through", "stream", "format"};
       for (const fields::Field* field : command_fields(command, sub)) names.push_back(field->name);
       const std::optional<std::string> guess = nearest(name, names);
       std::string dashed = guess.value_or("");
@@ -265,7 +274,7 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   std::string text;
   // A terminal on stdin is never waited on; nothing on stdin is the command's defaults (and the flags).
   if (part.prints && !isatty(STDIN_FILENO))
-    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    text = read_stdin();
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) text = "{}";
   json body = parse_body(part.share_input(std::move(text)));
   if (body.is_object()) body.update(flags.fields);
@@ -274,7 +283,7 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   if (command == "render") {
     render::Renderer renderer(1);
     const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, {});
-    emit(std::string(picture.begin(), picture.end()), flags.out);
+    emit(std::string(picture.begin(), picture.end()), flags.out, flags.out_through);
     return 0;
   }
   std::optional<ProgressLine> line;
@@ -291,8 +300,8 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   const json out = run_request(*command_from_string(command), body, limits, hooks);
   if (!part.prints) return 0;
   if (flags.stream) write_record("result", out);
-  else if (flags.format != Format::json) emit(cli::format_rows(cli::result_rows(command, out), flags.format), flags.out);
-  else emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out);
+  else if (flags.format != Format::json) emit(cli::format_rows(cli::result_rows(command, out), flags.format), flags.out, flags.out_through);
+  else emit((flags.pretty ? out.dump(2, ' ', false, json::error_handler_t::replace) : dump(out)) + "\n", flags.out, flags.out_through);
   return 0;
 }
 

@@ -916,6 +916,90 @@ def six_worst_case_programs(t, server_bin):
     return detail
 
 
+# A 36-byte program on 90 bodies: its derivative's directions are formed a pass at a time, never stacked (that
+# stack was 12k (11k)^2 doubles, 8 GB at k = 90), so it answers at once with a bounded workspace.
+NINETY_BODIES = json.dumps({"g": "g = 0*y", "group": "SExR^90"})
+
+
+def program_on_ninety_bodies(t, server_bin):
+    baseline = server_rss_bytes(server_bin)
+    peak = [baseline]
+    answers = []
+    worker = threading.Thread(target=lambda: answers.append(t.request("POST", "/api/v1/solve", NINETY_BODIES,
+                                                                      timeout=20.0)))
+    worker.start()
+    while worker.is_alive():
+        peak.append(server_rss_bytes(server_bin))
+        time.sleep(0.02)
+    expect(answers, "no answer")
+    status, _, data, secs = answers[0]
+    growth = max(peak) - baseline
+    detail = f"{status} after {secs:.2f} s, peak RSS +{growth >> 20} MiB"
+    expect(status in (200, 413) or (status == 504 and secs <= 3.3), f"{detail}: {data[:160]!r}")
+    expect(growth <= WORKSPACE_BUDGET, f"memory beyond one request's budget: {detail}")
+    return detail
+
+
+def body_programs_leave_nothing(t, server_bin):
+    # 30 solves of a program on 22 bodies, one after another: the memory they took is given back when each ends,
+    # so the resident set afterwards is within 10 % (and 32 MiB) of where it started.
+    body = json.dumps({"g": "g = 0*y", "group": "SExR^22"})
+    t.request("POST", "/api/v1/solve", body, timeout=20.0)  # the first one's lasting allocations (caches, pools)
+    time.sleep(0.2)
+    baseline = server_rss_bytes(server_bin)
+    statuses = [t.request("POST", "/api/v1/solve", body, timeout=20.0)[0] for _ in range(30)]
+    time.sleep(0.2)
+    after = server_rss_bytes(server_bin)
+    detail = f"answers {sorted(set(statuses))}, RSS {baseline >> 20} MiB before, {after >> 20} MiB after"
+    expect(all(s == 200 for s in statuses), detail)
+    expect(after <= baseline * 1.1 + (32 << 20), f"memory kept: {detail}")
+    return detail
+
+
+def parameter_renders_one_address(t):
+    # Twelve renders whose parameters cost about a second each to evaluate, at once from one address: each takes
+    # its work slot before its parameters are evaluated (1.5e9 flops, within the cost cap), so the address's cap turns most away with 429/503.
+    body = json.dumps({"g": "g = (y - y')*A(1,1)", "n": 3, "h": 0.5, "width": 64, "height": 64,
+                       "parameters": {"A": "ones(500)*ones(500)*ones(500)"}})
+    results = []
+    threads = [threading.Thread(target=lambda: results.append(quietly_status(t, "POST", "/api/v1/render/frames", body)),
+                                daemon=True) for _ in range(12)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join(timeout=20.0)
+    refused = sum(1 for r in results if r in (429, 503))
+    detail = f"answers {sorted(map(str, results))}"
+    expect(len(results) == 12 and refused >= 6, detail)
+    return detail
+
+
+def accept_by_range_and_quality(t):
+    # The 406 of a POST route asked for Server-Sent Events alone reads Accept as RFC 9110 does: media ranges in any
+    # case, q=0 as "not acceptable".
+    results = []
+    for accept, want in (("TEXT/EVENT-STREAM", 406), ("text/event-stream, application/json;q=0", 406),
+                         ("text/event-stream, application/json;q=0.5", 200), ("text/event-stream, */*", 200)):
+        status, _, data, _ = t.request("POST", "/api/v1/solve", SMALL_SOLVE, headers={"Accept": accept})
+        expect(status == want, f"Accept {accept!r}: {status} {data[:120]!r}")
+        results.append(f"{accept!r} {status}")
+    return ", ".join(results)
+
+
+def render_iterates_output_cap(t):
+    # A render of a 10 000-iteration solve of the 128-link chain would keep 10 001 iterates of 11 x 1408: the
+    # JSON route's cap (--max-output-values) refuses it at once, as it refuses the same solve's iterates.
+    body = json.dumps({"problem": "chain", "group": "SExR^128", "h": 0.001, "max_iterations": 10000,
+                       "method": "fixed-point", "tol": 1e-16})
+    results = []
+    for path in ("/api/v1/render/frames", "/api/v1/render/motion"):
+        status, _, data, secs = t.request("POST", path, body, timeout=20.0)
+        expect(status == 413 and error_field(data) == "include_iterates" and secs < 2.0,
+               f"{path}: {status} after {secs:.2f} s: {data[:160]!r}")
+        results.append(f"{path.rsplit('/', 1)[1]} {status} ({secs:.2f} s)")
+    return ", ".join(results)
+
+
 def sigterm_after_abandoned_sweeps(t, server_bin):
     # The abandoned sweeps against a server of its own with the default deadlines (120 s for sweeps): SIGTERM
     # 1 s after they started (their clients leave 1 s later) ends the process within its documented 10 s.
@@ -1214,9 +1298,11 @@ ATTACKS = [bad_type, nan_literal, huge_number, huge_n, negative_h, unknown_field
            cross_site_work, ndjson_stream, sse_stream, stream_first_record_early, huge_basin_grid,
            basin_grid_beyond_output_cap, basin_nan_radius, bad_y0, deadline_inside_basin_map,
            bad_continuation, bad_predictor, deadline_inside_continuation, bad_multistart,
-           deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address, deadline_within_a_tenth]
+           deadline_inside_multistart, hostile_neighbours, six_long_sweeps_one_address, deadline_within_a_tenth,
+           parameter_renders_one_address, render_iterates_output_cap, accept_by_range_and_quality]
 # Attacks that measure the servers' processes (CPU, memory): they need --server-bin (both modes).
-CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests, six_worst_case_programs]
+CPU_ATTACKS = [abandoned_sweeps_one_address, abandoned_plain_requests, six_worst_case_programs,
+               program_on_ninety_bodies, body_programs_leave_nothing]
 PROCESS_ATTACKS = [port_already_in_use, sigterm_during_long_work, descriptor_flood, sweep_timeout_ends_sweep,
                    sigterm_after_abandoned_sweeps]  # direct mode only: they start servers
 # The page's headers, ranges and banner hold with and without the front; the front's own refusals and its

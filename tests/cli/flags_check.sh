@@ -98,6 +98,37 @@ cmp <(timeless "$dir/out.json") <(timeless "$dir/defaults.json") || { echo "solv
 status=0
 "$bin" solve --h abc --out "$dir/bad.json" < /dev/null 2> /dev/null || status=$?
 [[ $status -eq 2 ]] && ! compgen -G "$dir/bad.json*" > /dev/null || { echo "--out after an error: status $status, $(ls "$dir")"; exit 1; }
+# --out keeps an existing file's mode, refuses a symbolic link or FIFO unless --out-through, and leaves no
+# temporary when a signal ends the write (SIGXFSZ: the file size limit is below the picture's size).
+printf 'old' > "$dir/private.json" && chmod 600 "$dir/private.json"
+"$bin" solve --out "$dir/private.json" < /dev/null
+[[ $(stat -c %a "$dir/private.json") == 600 ]] && cmp -s <(timeless "$dir/private.json") <(timeless "$dir/defaults.json") \
+  || { echo "--out over a 0600 file: mode $(stat -c %a "$dir/private.json")"; exit 1; }
+ln -s private.json "$dir/link.json"
+status=0
+"$bin" solve --out "$dir/link.json" < /dev/null 2> "$dir/link-err.txt" || status=$?
+[[ $status -eq 2 && -L "$dir/link.json" ]] && grep -q 'symbolic link' "$dir/link-err.txt" \
+  || { echo "--out over a symlink: status $status, $(cat "$dir/link-err.txt")"; exit 1; }
+"$bin" solve --n 4 --out "$dir/link.json" --out-through < /dev/null
+"$bin" solve --n 4 < /dev/null > "$dir/n4.json"
+[[ -L "$dir/link.json" && $(stat -c %a "$dir/private.json") == 600 ]] \
+  && cmp -s <(timeless "$dir/private.json") <(timeless "$dir/n4.json") \
+  || { echo "--out-through a symlink: not written through"; exit 1; }
+mkfifo "$dir/fifo"
+status=0
+"$bin" solve --out "$dir/fifo" < /dev/null 2> "$dir/fifo-err.txt" || status=$?
+[[ $status -eq 2 && -p "$dir/fifo" ]] && grep -q 'FIFO' "$dir/fifo-err.txt" || { echo "--out into a FIFO: status $status"; exit 1; }
+cat "$dir/fifo" > "$dir/from-fifo.json" &
+"$bin" solve --out "$dir/fifo" --out-through < /dev/null
+wait
+cmp -s <(timeless "$dir/from-fifo.json") <(timeless "$dir/defaults.json") || { echo "--out-through a FIFO: not the answer"; exit 1; }
+status=0
+(ulimit -f 1; exec "$bin" render residuals --n 3 --h 0.5 --out "$dir/big.png" < /dev/null 2> /dev/null) || status=$?
+[[ $status -ne 0 ]] && ! compgen -G "$dir/big.png*" > /dev/null || { echo "SIGXFSZ: status $status, $(ls "$dir")"; exit 1; }
+# A read error on stdin (a directory) is an error, not an empty request.
+status=0
+"$bin" solve < / > /dev/null 2> "$dir/dir-err.txt" || status=$?
+[[ $status -ne 0 ]] && grep -q 'cannot read stdin' "$dir/dir-err.txt" || { echo "solve < /: status $status"; exit 1; }
 # render frames takes an integration's fields as flags too.
 "$bin" render frames --problem rigid-body --integrator dirk-cg2 --h 0.25 --t-end 1 --frames 4 --width 96 --height 96 \
   < /dev/null > "$dir/frames.png"

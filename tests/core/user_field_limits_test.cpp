@@ -14,10 +14,12 @@
 
 #include "core/basins.hpp"
 #include "core/cancellation.hpp"
+#include "core/groups/mechanics_groups.hpp"
 #include "core/groups/son_group.hpp"
 #include "core/request_error.hpp"
 #include "core/sweep.hpp"
 #include "core/user_field/program.hpp"
+#include "core/user_field/user_vector_field.hpp"
 #include "core/work_precision.hpp"
 #include "core/parallel_for.hpp"
 
@@ -84,6 +86,22 @@ TEST(UserFieldLimits, TheDeepestNestingTheParserAllowsCompilesOnA1MiBStack) {
   });
   EXPECT_TRUE(compiled);
   EXPECT_NE(refused.find("nests too deeply"), std::string::npos) << refused;
+  // Brackets count 3 (the bracket, its element, the element's sign): 42 deep is the documented most.
+  std::string brackets = "y";
+  for (int i = 0; i < 42; ++i) brackets = "[" + brackets + "]";
+  compiled = false;
+  refused.clear();
+  on_small_stack(1024 * 1024, [&] {
+    user_field::compile("a = " + brackets + "; g = a - a'", 3, {});
+    compiled = true;
+    try {
+      user_field::compile("a = [" + brackets + "]; g = a - a'", 3, {});
+    } catch (const RequestError& e) {
+      refused = e.what();
+    }
+  });
+  EXPECT_TRUE(compiled);
+  EXPECT_NE(refused.find("nests too deeply"), std::string::npos) << refused;
 }
 
 TEST(UserFieldLimits, ACancelledRequestStopsItsCompile) {
@@ -119,6 +137,25 @@ double peak_growth_bytes(const std::function<void()>& f) {
   return grown;
 }
 
+TEST(UserFieldLimits, ADerivativeOnBodiesHoldsWhatTheProgramReports) {
+  // dg_y's matrix on 32 bodies takes its 384 directions a pass at a time: its peak is the program's reported
+  // workspace (to a factor of 2), not the stack of every direction's 352 x 352 matrix (380 MB).
+  constexpr int k = 32;
+  const SE3xR6PowerGroup group(k);
+  const auto program = user_field::compile("g = 0*y", 11 * k, {});
+  const UserVectorField<SE3xR6PowerGroup> field(group, program);
+  const SE3xR6PowerGroup::Element y = group.random(3);
+  const double reported = program->workspace_bytes(group.dim());
+  const double stacked = double(group.dim()) * (11.0 * k) * (11.0 * k) * sizeof(double);
+  EXPECT_LT(reported, stacked / 10);
+  const double measured = peak_growth_bytes([&] { (void)field.dg_matrix(group, y); });
+  ASSERT_GT(measured, 0);
+  EXPECT_GT(measured, reported / 4) << "reported " << reported << ", measured " << measured;
+#if !defined(LIENEWTON_SANITIZED)
+  EXPECT_LT(measured, reported * 2) << "reported " << reported << ", measured " << measured;
+#endif
+}
+
 TEST(UserFieldLimits, WorkspaceIsWhatTheProgramReports) {
   // Values and tangents of 500x500 tilings of y, sin's derivative, dg_y's three stacked directions.
   const std::string source = "a = y(ones(1,500), ones(1,500)); b = sin(a) .* a; g = (y - y')*trace(b)";
@@ -128,7 +165,7 @@ TEST(UserFieldLimits, WorkspaceIsWhatTheProgramReports) {
   const SONGroup group(3);
   const Eigen::MatrixXd y = group.random(3);
   Eigen::MatrixXd basis(9, 3);
-  for (int i = 0; i < 3; ++i) basis.middleRows(3 * i, 3) = group.hat(Eigen::Vector3d::Unit(i));
+  for (int i = 0; i < 3; ++i) basis.middleRows(3 * i, 3) = y * group.hat(Eigen::Vector3d::Unit(i));
   const double measured = peak_growth_bytes([&] {
     Eigen::MatrixXd g, dgs;
     program->eval(y, 0.0, g);

@@ -417,11 +417,11 @@ TEST(UserField, KeptValuesAreThoseOfTheSameYAndTime) {
       EXPECT_LE((dg - want_dg[k]).norm(), 1e-14 * want_dg[k].norm()) << "call " << k;
     }
   }
-  // Every direction of a basis at once, after g at that y (y U formed by a product of wider matrices, so
+  // Every direction of a basis at once, after g at that y (the tangents through products of wider matrices, so
   // equal to rounding).
-  Eigen::MatrixXd us(6, 3), dgs;
-  us << u1, u2;
-  program->eval_along(y2, 0.5, us, dgs);
+  Eigen::MatrixXd dys(6, 3), dgs;
+  dys << y2 * u1, y2 * u2;
+  program->eval_along(y2, 0.5, dys, dgs);
   for (int i = 0; i < 2; ++i)
     EXPECT_LE((dgs.middleRows(3 * i, 3) - want_basis[i]).norm(), 1e-13 * want_basis[i].norm());
   // 0 and -0 are different inputs: 1/0 = Inf, 1/-0 = -Inf.
@@ -443,7 +443,8 @@ TEST(UserField, ParameterExpressionsOfConstants) {
   EXPECT_EQ(user_field::constant_value("[1 2; 3 4]'", "parameters.M"), (Eigen::MatrixXd{{1, 3}, {2, 4}}));
   EXPECT_EQ(user_field::constant_value("c = cos(pi); [c; 2*c]", "parameters.v"), (Eigen::MatrixXd{{-1}, {-2}}));
   // It reads no y or t, and a fault names the parameter with its line and column.
-  for (const char* bad : {"y(1,1)", "2*t", "1 +", "", "undefined_name"}) {
+  // One value: a list of numbers outside brackets, two lines, or an assignment alone is not one.
+  for (const char* bad : {"y(1,1)", "2*t", "1 +", "", "undefined_name", "1,2", "2\n3", "a = 2", "1; c = 2"}) {
     try {
       user_field::constant_value(bad, "parameters.k");
       ADD_FAILURE() << bad << " was accepted";

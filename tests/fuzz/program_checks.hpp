@@ -24,9 +24,9 @@ inline bool check_program(std::string_view source, int n, const user_field::Para
   program->eval(y, 0.25, g);
   program->eval_with_tangent(y, 0.5, Eigen::MatrixXd::Ones(n, n), g, dg);
   if (g.rows() != n || g.cols() != n || dg.rows() != n || dg.cols() != n) std::abort();
-  Eigen::MatrixXd us(2 * n, n), dgs;
-  us << Eigen::MatrixXd::Ones(n, n), Eigen::MatrixXd::Identity(n, n);
-  program->eval_along(y, 0.5, us, dgs);
+  Eigen::MatrixXd dys(2 * n, n), dgs;
+  dys << Eigen::MatrixXd::Ones(n, n), Eigen::MatrixXd::Identity(n, n);
+  program->eval_along(y, 0.5, dys, dgs);
   if (dgs.rows() != 2 * n || dgs.cols() != n) std::abort();
   return true;
 }
