@@ -189,7 +189,7 @@ json matrix(const char* description) {
 
 // Every code an error carries (the service's and the CLI's): the codec's (json_codec.cpp), the front end's
 // refusals (request_limits.cpp, http_server.cpp), the handlers' (ApiError) and the CLI's own (usage,
-// output_failed). tests/replay/validate_answers.py checks the sources name no other.
+// input_failed, output_failed). tests/replay/validate_answers.py checks the sources name no other.
 json error_codes() {
   static const char* const kCodes[] = {
       "invalid_field", "unknown_field", "duplicate_field", "malformed_json", "unprocessable", "program_too_large",
@@ -198,13 +198,13 @@ json error_codes() {
       "unsupported_content_encoding", "not_acceptable", "cross_site", "multiple_ranges", "range_not_satisfiable",
       "invalid_header", "too_many_headers", "client_over_capacity", "over_capacity", "server_busy", "shutting_down",
       "deadline_exceeded", "client_gone", "render_unavailable", "out_of_memory", "internal_error", "error", "usage",
-      "output_failed"};
+      "input_failed", "output_failed"};
   json values = json::array();
   for (const char* code : kCodes) values.push_back(code);
   return json{{"type", "string"}, {"enum", values},
               {"description", "what went wrong, for a program to branch on (the status says how bad; message says it "
-                              "to a person). error: a status the server has no own code for; usage and "
-                              "output_failed: the CLI only"}};
+                              "to a person). error: a status the server has no own code for; usage, "
+                              "input_failed and output_failed: the CLI only"}};
 }
 
 // A stream's record of kind `type`: the named schema `of` plus its type.
