@@ -686,6 +686,11 @@ test('the stability map shows a Newton variant and continuation beside the paper
   // The grid once this run has ended (a cell of the previous grid with the same method, n and h keeps that grid's
   // status until this run's record replaces it).
   await page.evaluate(() => window.stabilityRunEnded);
+  // A live re-run of the edited form may end first (its busy mark is the one seen): wait, bounded, until the
+  // clicked run's cells are drawn, then check each.
+  await page.waitForFunction((cells) => cells.every((c) => document.querySelector(
+    `#stability .cell[data-method="${c.method}"][data-n="${c.n}"][data-h="${c.h}"]`)?.getAttribute('data-status') === c.status),
+  variant.cells, { timeout: 60000 }).catch(() => { /* the assertions below name the cell that differs */ });
   for (const cell of variant.cells) {
     const loc = panel.locator(`.cell[data-method="${cell.method}"][data-n="${cell.n}"][data-h="${cell.h}"]`);
     assert.equal(await loc.getAttribute('data-status'), cell.status, `status of ${JSON.stringify(cell)}`);
