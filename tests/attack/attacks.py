@@ -936,7 +936,9 @@ def program_on_ninety_bodies(t, server_bin):
     growth = max(peak) - baseline
     detail = f"{status} after {secs:.2f} s, peak RSS +{growth >> 20} MiB"
     expect(status in (200, 413) or (status == 504 and secs <= 3.3), f"{detail}: {data[:160]!r}")
-    expect(growth <= WORKSPACE_BUDGET, f"memory beyond one request's budget: {detail}")
+    # The budget bounds the program's workspace; the margin is the rest of the request (its operators, the solve's
+    # matrices) and, in the sanitizer build the battery runs against, ASan's redzones and quarantine.
+    expect(growth <= WORKSPACE_BUDGET + (64 << 20), f"memory beyond one request's budget and margin: {detail}")
     return detail
 
 
