@@ -936,9 +936,12 @@ def program_on_ninety_bodies(t, server_bin):
     growth = max(peak) - baseline
     detail = f"{status} after {secs:.2f} s, peak RSS +{growth >> 20} MiB"
     expect(status in (200, 413) or (status == 504 and secs <= 3.3), f"{detail}: {data[:160]!r}")
-    # The budget bounds the program's workspace; the margin is the rest of the request (its operators, the solve's
-    # matrices) and, in the sanitizer build the battery runs against, ASan's redzones and quarantine.
-    expect(growth <= WORKSPACE_BUDGET + (64 << 20), f"memory beyond one request's budget and margin: {detail}")
+    # The budget bounds the program's workspace; 64 MiB is the rest of the request (its operators, the solve's
+    # matrices); 256 MiB is ASan's default quarantine, which keeps freed blocks resident in the sanitizer build the
+    # battery runs against (alone on a fresh ASan server this request grew it by 384 MiB, in Release by 107 MiB).
+    # Before the derivative was formed in passes, it took 8 GB.
+    bound = WORKSPACE_BUDGET + (64 << 20) + (256 << 20)
+    expect(growth <= bound, f"memory beyond one request's budget and margins: {detail}")
     return detail
 
 
