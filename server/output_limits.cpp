@@ -1,5 +1,6 @@
 #include "server/output_limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -9,10 +10,16 @@
 namespace lienewton::service {
 namespace {
 
-// Values per step record and per sweep cell in the JSON result (step, t, iterations, residual, status,
-// energy, substeps, h, error_estimate, rejected; method, n, h, status, reason, iterations, rate, residual, seconds).
-constexpr double kStepValues = 10;
-constexpr double kCellValues = 9;
+// Values per step record and per sweep cell in the JSON result, counted on a serialised one: a field added to
+// the record is counted without an edit here.
+double step_values() {
+  static const double values = static_cast<double>(to_json(StepRecord{}).size());
+  return values;
+}
+double cell_values() {
+  static const double values = static_cast<double>(to_json(SweepCell{}).size());
+  return values;
+}
 
 void refuse_beyond(double values, const OutputLimits& limits, const char* field, const std::string& what) {
   if (values <= static_cast<double>(limits.max_values)) return;
@@ -27,6 +34,26 @@ double state_values(const ProblemSpec& problem) {
   return double(shape.rows) * double(shape.cols);
 }
 
+// Step records an integration can return: adaptive, at most max_steps; fixed, t_end / h rounded, as the
+// integrator takes them (at least one).
+double planned_steps(const IntegrateRequest& r) {
+  return r.adaptive() ? r.max_steps : std::max(1.0, std::round(r.t_end / *r.h));
+}
+
+// States an integration's answer holds with f frames: y, and its frames. Fixed steps keep y(0), every
+// max(1, floor(S / f))-th step and the last; adaptive ones are thinned to at most 2f + 1.
+double planned_states(const IntegrateRequest& r, int frames) {
+  if (frames == 0) return 1;
+  if (r.adaptive()) return 2.0 * frames + 2.0;
+  const double steps = planned_steps(r), stride = std::max(1.0, std::floor(steps / frames));
+  const double strided = std::floor(steps / stride) + 1, last = std::fmod(steps, stride) != 0 ? 1 : 0;
+  return strided + last + 1;
+}
+
+double planned_values(const IntegrateRequest& r, int frames) {
+  return planned_steps(r) * step_values() + planned_states(r, frames) * state_values(r.problem);
+}
+
 }  // namespace
 
 void check_output(const SolveRequest& r, const OutputLimits& limits) {
@@ -38,30 +65,26 @@ void check_output(const SolveRequest& r, const OutputLimits& limits) {
 }
 
 void check_output(const IntegrateRequest& r, const OutputLimits& limits) {
-  // Adaptive: at most max_steps records; frames: at most 2 frames + 1 states besides y(0).
-  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / *r.h);
-  const double states = r.adaptive() ? 2.0 * r.frames + 2.0 : r.frames + 1.0;
-  const double values = steps * kStepValues + states * state_values(r.problem);
-  refuse_beyond(values, limits, r.frames > 0 ? "frames" : "h", "this integration");
+  refuse_beyond(planned_values(r, r.frames), limits, r.frames > 0 ? "frames" : "h", "this integration");
 }
 
 void fit_output(IntegrateRequest& r, const OutputLimits& limits) {
   if (!r.adaptive()) return;
-  const double states = (2.0 * r.frames + 2.0) * state_values(r.problem);
-  const double room = std::floor((static_cast<double>(limits.max_values) - states) / kStepValues);
+  const double states = planned_states(r, r.frames) * state_values(r.problem);
+  const double room = std::floor((static_cast<double>(limits.max_values) - states) / step_values());
   if (room >= 1 && room < r.max_steps) r.max_steps = static_cast<int>(room);
 }
 
 int fitting_frames(const IntegrateRequest& r, int wanted, const OutputLimits& limits) {
-  const double steps = r.adaptive() ? r.max_steps : std::ceil(r.t_end / *r.h);
-  const double per_frame = (r.adaptive() ? 2.0 : 1.0) * state_values(r.problem);
-  const double room = std::floor((static_cast<double>(limits.max_values) - steps * kStepValues) / per_frame) - 2;
-  return std::max(r.frames, static_cast<int>(std::min<double>(wanted, room)));
+  const double cap = static_cast<double>(limits.max_values);
+  int frames = wanted;  // at most kMaxFrames tries: the count is not monotone in f where the stride changes
+  while (frames > r.frames && planned_values(r, frames) > cap) --frames;
+  return std::max(r.frames, frames);
 }
 
 void check_output(const SweepRequest& r, const OutputLimits& limits) {
   const double cells = static_cast<double>(r.methods.size()) * static_cast<double>(r.n.size()) * static_cast<double>(r.h.size());
-  refuse_beyond(cells * kCellValues, limits, "h", "this sweep grid");
+  refuse_beyond(cells * cell_values(), limits, "h", "this sweep grid");
 }
 
 void check_output(const BasinRequest& r, const OutputLimits& limits) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "core/basins.hpp"
@@ -146,6 +147,38 @@ TEST(OpenApi, IteratesCountTheGroupsMatrixSize) {
   auto at = c.Post("/api/v1/solve", so3.dump(), "application/json");  // 81 x 9 = 729 numbers
   ASSERT_TRUE(at);
   EXPECT_EQ(at->status, 200) << at->body;
+}
+
+// The output cap counts what an integration's answer holds: every value of its step records (null ones too)
+// and its states (y, and the frames: y(0), every stride-th step and the last, which 5 steps show with 2 and 3
+// frames). A cap of exactly that count is met and one fewer is refused.
+TEST(OpenApi, IntegrationCapCountsTheSerialisedAnswer) {
+  // Every scalar in j, null ones too; an object's keys are names, not values.
+  const std::function<std::size_t(const json&)> values_in = [&](const json& j) {
+    if (!j.is_structured()) return std::size_t{1};
+    std::size_t count = 0;
+    for (const json& v : j) count += values_in(v);
+    return count;
+  };
+  for (const int frames : {0, 2, 3}) {
+    const json body{{"problem", "rigid-body"}, {"h", 0.2}, {"t_end", 1}, {"frames", frames}};
+    testing::TestServer roomy;
+    auto c = roomy.client();
+    auto res = c.Post("/api/v1/integrate", body.dump(), "application/json");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200) << res->body;
+    const json answer = json::parse(res->body);
+    ASSERT_EQ(answer["steps"].size(), 5u);
+    const std::size_t held = values_in(answer["steps"]) + values_in(answer["y"]) + values_in(answer["frames"]);
+    for (const std::size_t cap : {held, held - 1}) {
+      ServerOptions options;
+      options.output.max_values = cap;
+      testing::TestServer s(options);
+      auto capped = s.client().Post("/api/v1/integrate", body.dump(), "application/json");
+      ASSERT_TRUE(capped);
+      EXPECT_EQ(capped->status, cap == held ? 200 : 413) << "frames " << frames << ", cap " << cap << ": " << capped->body;
+    }
+  }
 }
 
 TEST(OpenApi, RequestSchemasListTheCodecFields) {
