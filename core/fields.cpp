@@ -15,6 +15,7 @@
 #include "solvers/watchdog.hpp"
 #include "sweep.hpp"
 #include "validation.hpp"
+#include "vocabulary.hpp"
 #include "work_precision.hpp"
 
 namespace lienewton::fields {
@@ -89,6 +90,17 @@ Field enumeration(const char* name, const E (&all)[K], Routes routes, std::vecto
                   Default default_value = {}) {
   return Field{.name = name, .type = Type::string, .routes = routes, .lands = std::move(lands),
                .description = std::move(description), .values = names(all), .default_value = std::move(default_value)};
+}
+
+// "name (its sentence); ..." for every value: a description that lists each choice from the vocabulary.
+template <class E, std::size_t K>
+std::string each_with_its_sentence(const E (&all)[K]) {
+  std::string out;
+  for (const E value : all) {
+    const Words w = words(value);
+    out += (out.empty() ? "" : "; ") + std::string(w.api) + " (" + std::string(w.sentence) + ")";
+  }
+  return out;
 }
 
 // An enum value's API name, as a row's default.
@@ -328,9 +340,7 @@ std::vector<Field> build() {
                                    "equation's z"});
   t.push_back(number(t_end, integrate | work_precision, {&IntegrateRequest::t_end, &WorkPrecisionRequest::t_end}));
   t.push_back(enumeration("integrator", kAllIntegrators, integrate, {&IntegrateRequest::integrator},
-                          "Lie group integrator: implicit-euler, dirk-cg2/3 (Crouch-Grossman DIRK, stage by stage), "
-                          "rkmk-gauss1/2/3 and rkmk-radau2/3 (implicit RKMK, coupled stages in the algebra), rkmk4 "
-                          "(explicit)",
+                          "Lie group integrator: " + each_with_its_sentence(kAllIntegrators),
                           api_name(IntegrateRequest{}.integrator)));
   t.push_back(tolerance(rtol, integrate, {&IntegrateRequest::rtol}));
   t.push_back(tolerance(atol, integrate, {&IntegrateRequest::atol}));

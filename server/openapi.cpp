@@ -481,9 +481,10 @@ json schemas() {
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_residuals))}};
   s["RenderInvariantsRequest"] = json{
-      {"description", "An IntegrateRequest of a problem with invariants (rigid-body, heavy-top, chain at damping 0; "
-                      "else 422 naming problem) plus width/height (default " + size_text(kInvariantsFigure) + "). One line per "
-                      "invariant: |I(y_k) - I(y_0)| / |I(y_0)| against the step k, log scale; a run that does not converge: 422."},
+      {"description", "An IntegrateRequest of a problem with invariants (" + problems_with_invariants() +
+                      "; else 422 naming problem) plus width/height (default " + size_text(kInvariantsFigure) + "). One line per "
+                      "invariant: |I(y_k) - I(y_0)| / scale against the step k, log scale, the scale as IntegrateResult's "
+                      "<invariant>_scale; a run that does not converge: 422."},
       {"type", "object"},
       {"properties", properties(picture_rows(fields::render_invariants))}};
   s["Health"] = object({{"status", json{{"type", "string"}, {"enum", {"ok", "draining", "saturated"}}}}}, {"status"}, false);

@@ -569,6 +569,18 @@ std::vector<unsigned char> render_work_precision(json request, const Limits& lim
   return draw_figure(renderer, format, [&] { return render::work_precision_scene(result, title, width, height); });
 }
 
+std::string problems_with_invariants() {
+  std::string out;
+  for (ProblemKind kind : kAllProblems) {
+    const auto kept = invariants_of(kind);
+    if (kept.empty()) continue;
+    out += (out.empty() ? "" : ", ") + std::string(to_string(kind)) + " (";
+    for (std::size_t i = 0; i < kept.size(); ++i) out += (i ? ", " : "") + std::string(to_string(kept[i]));
+    out += ")";
+  }
+  return out + ", where its parameters keep them (a damped chain loses its energy)";
+}
+
 std::vector<unsigned char> render_invariants(json request, const Limits& limits, render::Renderer& renderer,
                                              const RenderHooks& hooks) {
   if (!request.is_object()) throw FieldError("invalid_field", "", "the request must be a JSON object");
@@ -580,8 +592,8 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
   validate(r);
   cap_output(r, hooks);
   if (!has_invariants(r.problem))
-    throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants (rigid-body, "
-                                                    "heavy-top and chain at damping 0 do)");
+    throw ApiError(422, "unprocessable", "problem", field_name(r.problem) + " reports no invariants; these do: " +
+                                                    problems_with_invariants());
   bool stopped = false;
   const IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });

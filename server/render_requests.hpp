@@ -73,6 +73,8 @@ std::vector<unsigned char> render_residuals(json request, const Limits& limits, 
 
 // Invariants' drift over time: an IntegrateRequest of a problem with invariants (422 naming problem otherwise),
 // plus width/height (default kInvariantsFigure).
+// The built-in problems that report invariants and which, in words, from core/invariants.hpp's table.
+std::string problems_with_invariants();
 std::vector<unsigned char> render_invariants(json request, const Limits& limits, render::Renderer& renderer,
                                              const RenderHooks& hooks);
 
