@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace lienewton {
@@ -110,25 +111,44 @@ typename G::Operator identity_operator(const G& g) {
   }
 }
 
-// The operator whose column i is column(e_i), asked in order i = 0, 1, ..., for differentials known only by their
-// action (difference quotients, a user's df, the default dg_matrix). A sparse operator keeps the columns' nonzeros.
+// An operator set column by column, in order i = 0, 1, ..., by a caller that produces its columns in passes (a
+// user's dg_y formed a few directions at a time): a sparse operator keeps the columns' nonzeros only.
+template <class G>
+class OperatorColumns {
+ public:
+  explicit OperatorColumns(const G& g) : dim_(g.dim()) {
+    if constexpr (!kSparseOperator<G>) m_ = zero_operator(g);
+  }
+  void set(int i, const typename G::Vector& c) {
+    if constexpr (kSparseOperator<G>) {
+      for (Eigen::Index r = 0; r < c.size(); ++r)
+        if (c[r] != 0.0) entries_.emplace_back(static_cast<int>(r), i, c[r]);
+    } else {
+      m_.col(i) = c;
+    }
+  }
+  typename G::Operator take() {
+    if constexpr (kSparseOperator<G>) {
+      m_.resize(dim_, dim_);
+      m_.setFromTriplets(entries_.begin(), entries_.end());
+      entries_ = {};
+    }
+    return std::move(m_);
+  }
+
+ private:
+  int dim_;
+  typename G::Operator m_;
+  std::vector<Eigen::Triplet<double>> entries_;  // a sparse operator's nonzeros until take()
+};
+
+// The operator whose column i is column(e_i), for differentials known only by their action (difference quotients,
+// a user's df, the default dg_matrix).
 template <class G, class Column>
 typename G::Operator operator_from_columns(const G& g, Column column) {
-  if constexpr (kSparseOperator<G>) {
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int i = 0; i < g.dim(); ++i) {
-      const typename G::Vector c = column(basis_vector(g, i));
-      for (Eigen::Index r = 0; r < c.size(); ++r)
-        if (c[r] != 0.0) entries.emplace_back(static_cast<int>(r), i, c[r]);
-    }
-    typename G::Operator m(g.dim(), g.dim());
-    m.setFromTriplets(entries.begin(), entries.end());
-    return m;
-  } else {
-    typename G::Operator m = zero_operator(g);
-    for (int i = 0; i < g.dim(); ++i) m.col(i) = column(basis_vector(g, i));
-    return m;
-  }
+  OperatorColumns<G> columns(g);
+  for (int i = 0; i < g.dim(); ++i) columns.set(i, column(basis_vector(g, i)));
+  return columns.take();
 }
 
 // Every stored entry finite (a sparse operator's pattern only: its implicit zeros are).

@@ -457,19 +457,18 @@ class Compiler {
     if (s_.statements.empty()) fail_at(1, 1, "the value is empty: write a number, a matrix or an expression of them");
     const int last = s_.statements.back();
     for (int st : s_.statements) {
+      if (st == last) break;
       const Node& nd = node(st);
-      if (st != last && nd.kind != NodeKind::assign)
+      if (nd.kind != NodeKind::assign)
         fail(st, "a parameter's value is one expression, and another follows this one (a matrix's entries go "
                  "inside brackets: [1, 2] or [1 2; 3 4])");
-      if (st == last && nd.kind == NodeKind::assign)
-        fail(st, "a parameter's value ends with an expression, not an assignment: write the value alone");
-      const int result = expr(nd.kind == NodeKind::assign ? nd.kids[0] : st);
-      if (nd.kind == NodeKind::assign) names_[nd.text] = result;
-      if (st != last) continue;
-      if (!fixed(result)) fail(st, "a parameter is a constant: its value cannot read y or t");
-      return value(result);
+      names_[nd.text] = expr(nd.kids[0]);
     }
-    fail_at(1, 1, "the value is empty");  // not reached: the last statement returned
+    if (node(last).kind == NodeKind::assign)
+      fail(last, "a parameter's value ends with an expression, not an assignment: write the value alone");
+    const int result = expr(last);
+    if (!fixed(result)) fail(last, "a parameter is a constant: its value cannot read y or t");
+    return value(result);
   }
 
   std::shared_ptr<const Program> run() {

@@ -12,7 +12,6 @@
 #include <type_traits>
 
 #include "../problem_spec.hpp"
-#include "../groups/operator_columns.hpp"
 #include "../problems.hpp"
 #include "algebra_defect.hpp"
 #include "program.hpp"
