@@ -46,8 +46,8 @@ bool loopback(const std::string& host) {
 int main(int argc, char** argv) {
   using namespace lienewton::service;
   // glibc gives each worker thread that allocates its own arena, up to 8 per core, and each keeps the pages its
-  // requests touched: 30 sequential program solves on 12 bodies left 202 MiB resident with the default, 96 MiB
-  // with one arena per core (docs/service.md, Memory). malloc_trim after the last request returns the rest.
+  // requests touched: one arena per core keeps far less resident after a run of large requests (docs/service.md,
+  // Memory, has the measurement). malloc_trim after the last request returns the rest.
   mallopt(M_ARENA_MAX, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
   std::string message;
   bool help = false;

@@ -916,8 +916,8 @@ def six_worst_case_programs(t, server_bin):
     return detail
 
 
-# A 36-byte program on 90 bodies: its derivative's directions are formed a pass at a time, never stacked (that
-# stack was 12k (11k)^2 doubles, 8 GB at k = 90), so it answers at once with a bounded workspace.
+# A 36-byte program on 90 bodies: its derivative's directions are formed a pass at a time, never stacked (the
+# stack would hold k (11k)^2 doubles), so it answers at once with a bounded workspace.
 NINETY_BODIES = json.dumps({"g": "g = 0*y", "group": "SExR^90"})
 
 
@@ -938,8 +938,7 @@ def program_on_ninety_bodies(t, server_bin):
     expect(status in (200, 413) or (status == 504 and secs <= 3.3), f"{detail}: {data[:160]!r}")
     # The budget bounds the program's workspace; 64 MiB is the rest of the request (its operators, the solve's
     # matrices); 256 MiB is ASan's default quarantine, which keeps freed blocks resident in the sanitizer build the
-    # battery runs against (alone on a fresh ASan server this request grew it by 384 MiB, in Release by 107 MiB).
-    # Before the derivative was formed in passes, it took 8 GB.
+    # battery runs against (docs/service.md, Memory, has the measured growth).
     bound = WORKSPACE_BUDGET + (64 << 20) + (256 << 20)
     expect(growth <= bound, f"memory beyond one request's budget and margins: {detail}")
     return detail
