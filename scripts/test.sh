@@ -4,7 +4,8 @@
 #   scripts/test.sh              Release build in build/ (with -DLIENEWTON_MPI=ON)
 #   scripts/test.sh --sanitize   the same tests in an ASan + UBSan (incl. float-cast-overflow) build in build-asan/,
 #                                compiled with clang (the fuzzer's compiler, scripts/packages-fuzz.txt)
-#   Further arguments go to ctest (CI's sanitize stage passes -LE attack: its attack stage runs the battery).
+#   Further arguments go to ctest (CI's sanitize stage passes -LE 'attack|browser': its attack stage runs the battery,
+#   and the browser tests, which check the page, run in the Release suite).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/deps.sh test
