@@ -108,12 +108,15 @@ class SharedServerTest : public ::testing::Test {
     server_ = nullptr;
   }
   static httplib::Client client() { return server_->client(); }
-  // POST a JSON body; expects `status` and returns the parsed answer (null when there was none).
+  // POST a JSON body; expects `status` and returns the parsed answer, or null when there was none or it had
+  // another status (a test reading a member of null then fails on a thrown type_error; reading a missing key of a
+  // const object, such as an error answer's, would be undefined).
   static nlohmann::json post(const std::string& path, const std::string& body, int status = 200) {
     auto res = server_->client().Post(path, body, "application/json");
     EXPECT_TRUE(res);
     if (!res) return nlohmann::json();
     EXPECT_EQ(res->status, status) << res->body;
+    if (res->status != status) return nlohmann::json();
     return nlohmann::json::parse(res->body);
   }
   // Each request (`opening`, then a case's rest) posted to `path` is a 422 naming the case's field.
