@@ -3,7 +3,7 @@
 # Dockerfile so that they cannot drift apart.
 #   scripts/deps.sh build   Debian packages to build and run the service
 #   scripts/deps.sh test    the above plus what the test suite needs (Chromium, nginx, npm packages)
-#   scripts/deps.sh fuzz    build packages plus clang and its libFuzzer runtime (tests/fuzz/run_fuzzer.sh)
+#   scripts/deps.sh fuzz    build packages plus clang and its libFuzzer runtime (scripts/test.sh --sanitize)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 what="${1:-build}"

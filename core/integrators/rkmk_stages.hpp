@@ -34,7 +34,6 @@
 // otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
 // predictor; exact Newton corrector with the same two tests; step controlled as continuation.hpp's), and the
 // method's solve at h must stay at the branch's root. docs/integrators.md.
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -48,6 +47,7 @@
 #include "core/problems.hpp"
 #include "core/solver_options.hpp"
 #include "core/solvers/continuation.hpp"
+#include "core/solvers/eigenvalues.hpp"
 #include "core/solvers/iteration_monitor.hpp"
 #include "stage_decoupling.hpp"
 #include "tableau.hpp"
@@ -106,8 +106,8 @@ class RkmkStages {
   // eigenvalues at every step: regularity is then not known, and the stages follow the branch from h = 0.
   bool linearisation_regular() const {
     if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return false;
-    const Eigen::VectorXcd mu = Eigen::MatrixXd(jacobian_at_start()).eigenvalues();
-    const double rho = tab_->a.eigenvalues().cwiseAbs().maxCoeff();
+    const Eigen::VectorXcd mu = eigenvalues_of(Eigen::MatrixXd(jacobian_at_start()));
+    const double rho = eigenvalues_of(tab_->a).cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i < mu.size(); ++i)
       if (h_ * std::abs(mu[i]) * rho >= 1.0 && mu[i].real() > 0.0) return false;
     return true;

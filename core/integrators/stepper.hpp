@@ -18,6 +18,7 @@
 #include "core/integrate.hpp"
 #include "core/problems.hpp"
 #include "core/solvers/continuation.hpp"
+#include "core/solvers/eigenvalues.hpp"
 #include "core/solvers/run_method.hpp"
 #include "embedded_estimate.hpp"
 #include "rkmk_stages.hpp"
@@ -87,7 +88,7 @@ class Stepper {
     field_->set_time(t);
     const DynamicOperator<G> j(field_->dg_matrix(group_, y));
     if (dt * j.norm() <= 1.0) return false;  // |mu| <= ||dg||_F: no eigenvalue to look for
-    return dt * -Eigen::MatrixXd(j).eigenvalues().real().minCoeff() > 1.0;
+    return dt * -eigenvalues_of(Eigen::MatrixXd(j)).real().minCoeff() > 1.0;
   }
   // Whether take() can give an embedded error estimate (implicit RKMK methods), and its order s.
   bool estimates_error() const { return weights_.has_value(); }

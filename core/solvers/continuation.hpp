@@ -22,7 +22,6 @@
 //               on with a shorter step.
 // The path's own Newton uses the exact D_v F (the search must know the branch's geometry, whatever differential
 // the method uses); the caller times the whole search. Only the method's solve at h decides the result's status, y, residual and trace.
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -34,6 +33,7 @@
 
 #include "core/cancellation.hpp"
 #include "core/solver_options.hpp"
+#include "eigenvalues.hpp"
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
 #include "newton_step.hpp"
@@ -238,7 +238,7 @@ class BranchPath {
   std::optional<SolveResult> linearly_implicit() {
     const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
     if (!(h_ * j.norm() > 1.0)) return std::nullopt;
-    const Eigen::VectorXcd mu = j.eigenvalues();
+    const Eigen::VectorXcd mu = eigenvalues_of(j);
     for (Eigen::Index i = 0; i < mu.size(); ++i)
       if (h_ * std::abs(mu[i]) >= 1.0 && mu[i].real() > 0.0) return std::nullopt;
     const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(q_, q_) - h_ * j;

@@ -211,6 +211,7 @@ void apply_linear(const Instruction& ins, const std::vector<const MatrixXd*>& x,
     case Op::antisym: out = a - a.transpose(); return;
     case Op::axpby: out = ins.alpha * a + ins.beta * *x[1]; return;
     case Op::hcat: {
+      if (out.size() == 0) return;  // nothing to copy, and no data to offset into (an empty matrix's is null)
       Eigen::Index c = 0;
       for (const MatrixXd* p : x) {
         out.middleCols(c, p->cols()) = *p;
@@ -219,6 +220,7 @@ void apply_linear(const Instruction& ins, const std::vector<const MatrixXd*>& x,
       return;
     }
     case Op::vcat: {
+      if (out.size() == 0) return;
       Eigen::Index r = 0;
       for (const MatrixXd* p : x) {
         out.middleRows(r, p->rows()) = *p;

@@ -136,6 +136,8 @@ TEST(WorkPrecision, SeriesCarryTheirFittedOrder) {
 // orders fitted over every point were artefacts (2.37 and 3.42). Every stage now keeps the root continued from its
 // start, the orders are fitted over the asymptotic range only, and each run's global error is the distance to an
 // independent reference (RK4 on the matrix ODE, nothing shared with the project's RKMK4 reference) within 1 %.
+// A Release-only test: its diagram took 72 s under ASan; the sanitizer build runs the same code on smaller diagrams.
+#if !defined(LIENEWTON_SANITIZED)
 TEST(WorkPrecision, PaperSineOrdersAreHonest) {
   WorkPrecisionRequest req;
   req.problem.kind = ProblemKind::paper_sine;
@@ -161,6 +163,7 @@ TEST(WorkPrecision, PaperSineOrdersAreHonest) {
     EXPECT_GE(in_fit, 3) << to_string(req.choices[c].integrator);
   }
 }
+#endif
 
 }  // namespace
 }  // namespace lienewton

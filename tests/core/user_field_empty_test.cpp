@@ -58,6 +58,12 @@ TEST(UserFieldEmpty, EveryOperationTakesEmptyOperandsAsMatlabDoes) {
   expect_same_field("a = [zeros(0,3); y]; g = a - a'", "g = y - y'");
   expect_same_field("a = [y(:,[]), y, zeros(3,0)]; g = a - a'", "g = y - y'");
   expect_same_field("a = [y; y([],:)]; g = a - a'", "g = y - y'");
+  // Joined into an empty value (k x 0 parts stacked, 0 x k side by side): nothing to copy, and no data to offset
+  // into (an empty matrix's pointer is null: UBSan's pointer-overflow check caught [zeros(2,0); zeros(2,0)]).
+  expect_same_field("a = [zeros(2,0); zeros(2,0)]; g = (y - y')*(1 + norm(a))", "g = y - y'");
+  expect_same_field("a = [zeros(0,2), zeros(0,2)]; g = (y - y')*(1 + norm(a))", "g = y - y'");
+  expect_same_field("a = [y(:,[]); y(:,[])]; g = (y - y')*(1 + norm(a))", "g = y - y'");
+  expect_same_field("a = [y([],:), y([],:)]; g = (y - y')*(1 + norm(a))", "g = y - y'");
   // Square empties: inverse, solves, powers, trace, skew are empty or zero.
   expect_same_field("g = (y - y')*(1 + norm(inv(zeros(0))) + trace(zeros(0)))", "g = y - y'");
   expect_same_field("g = (y - y')*size(zeros(0) \\ zeros(0,2), 2)", "g = (y - y')*2");
