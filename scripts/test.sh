@@ -14,11 +14,10 @@ if [ "${1:-}" = --sanitize ]; then
   shift
   scripts/deps.sh fuzz
   dir=build-asan
-  # The sanitizer build is CI's longest stage, and the fuzzers' build too (one build, not two). clang compiles a
-  # solver instance file under ASan + UBSan in 36 s of CPU where GCC 12 takes 59 s. -g1: line tables are all a
-  # sanitizer report needs. -O1: a solver test compiles in 46 s where -O2 takes 65 s, and the suite runs no slower.
-  # NDEBUG: with Eigen's range checks on, the attack battery's user programs on many bodies met the ASan server's
-  # deadline (body_programs_leave_nothing answered 504).
+  # The sanitizer build is CI's longest stage, and the fuzzers' build too (one build, not two). clang: it compiles
+  # the solver instances under ASan + UBSan faster than GCC 12 (docs/development.md). -g1: line tables are all a
+  # sanitizer report needs. -O1: it compiles faster than -O2, and the suite runs no slower. NDEBUG: without it
+  # (Eigen's range checks on) the attack battery's programs on many bodies met the ASan server's deadline.
   cmake -S . -B "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DLIENEWTON_SANITIZE=ON -DLIENEWTON_FUZZ=ON -DLIENEWTON_BENCH=OFF
 else
