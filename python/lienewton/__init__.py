@@ -16,10 +16,12 @@ A request the CLI refuses raises RequestError naming the field (with a did-you-m
 release the GIL; Ctrl-C stops them (KeyboardInterrupt) within about one solver iteration. help(lienewton.solve)
 lists every field of the request, from the table the codec reads them by.
 """
+import collections.abc as _abc
 import difflib as _difflib
 import functools as _functools
 import inspect as _inspect
 import json as _json
+import math as _math
 import numbers as _numbers
 
 import numpy as _np
@@ -105,22 +107,53 @@ def _body(request, fields):
     if request is None:
         body = {}
     elif isinstance(request, (str, bytes)):
-        body = _json.loads(request)
-    else:
+        try:
+            body = _json.loads(request)
+        except ValueError as e:
+            raise RequestError({"code": "malformed_json", "field": "",
+                                "message": f"the request is not valid JSON ({e})"}) from None
+    elif isinstance(request, _abc.Mapping):
         body = dict(request)
+    else:
+        body = None
+    if not isinstance(body, dict):
+        got = type(body if request is None or isinstance(request, (str, bytes)) else request).__name__
+        raise RequestError({"code": "invalid_field", "field": "",
+                            "message": f"the request must be a JSON object (a dict or its JSON text), got {got}"})
     body.update(fields)
     return body
+
+
+def _first_non_finite(value, path):
+    """The field (as the codec names it: objects in a list by their place, choices[0].h; numbers by the field, h or
+    y0) of the first NaN or infinity in value."""
+    if isinstance(value, (_np.ndarray, _np.generic)):
+        value = value.tolist()
+    if isinstance(value, float) and not _math.isfinite(value):
+        return path
+    if isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            found = _first_non_finite(item, f"{path}[{i}]" if isinstance(item, dict) else path)
+            if found is not None:
+                return found
+    if isinstance(value, dict):
+        for key, item in value.items():
+            found = _first_non_finite(item, f"{path}.{key}" if path else str(key))
+            if found is not None:
+                return found
+    return None
 
 
 def request_json(request=None, **fields):
     """The request document (JSON text) a command is given: `request` (a dict or JSON text), then the keyword
     fields over it, as the CLI's flags go over stdin. This is the text `lienewton COMMAND` reads the same way."""
     body = _body(request, fields)
-    # allow_nan=False: NaN is not JSON; the codec would refuse the text anyway, but without naming the field.
-    try:
-        return _json.dumps(body, default=_plain, allow_nan=False)
-    except ValueError as e:
-        raise RequestError({"code": "invalid_field", "field": "", "message": str(e)}) from None
+    # NaN and infinities are not JSON; the codec would refuse the text anyway, but without naming the field.
+    where = _first_non_finite(body, "")
+    if where is not None:
+        raise RequestError({"code": "invalid_field", "field": where,
+                            "message": f"{where} must be finite (NaN and infinities are not JSON numbers)"})
+    return _json.dumps(body, default=_plain, allow_nan=False)
 
 
 def _is_number(x):

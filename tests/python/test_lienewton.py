@@ -230,9 +230,25 @@ class Errors(unittest.TestCase):
         self.assertEqual((e.field, e.line, e.column), ("g", 1, 5))
         self.assertIn("'(' is never closed", e.message)
 
-    def test_nan_is_refused(self):
-        with self.assertRaises(lienewton.RequestError):
-            lienewton.solve(h=float("nan"))
+    def test_non_finite_numbers_name_their_field(self):
+        for fields, field in [(dict(h=float("nan")), "h"), (dict(h=1e400), "h"),
+                              (dict(y0=np.diag([1.0, 1.0, -np.inf])), "y0"),
+                              (dict(choices=[{"integrator": "implicit-euler"}, {"integrator": "dirk-cg3", "x": np.nan}]),
+                               "choices[1].x")]:
+            with self.subTest(field=field), self.assertRaises(lienewton.RequestError) as caught:
+                lienewton.work_precision(**fields) if "choices" in fields else lienewton.solve(**fields)
+            self.assertEqual((caught.exception.field, caught.exception.code), (field, "invalid_field"))
+
+    def test_a_request_that_is_not_an_object_is_a_request_error(self):
+        for request, code, said in [(5, "invalid_field", "got int"), ([1, 2], "invalid_field", "got list"),
+                                    ("[1, 2]", "invalid_field", "got list"), (b"3", "invalid_field", "got int"),
+                                    ("{not json", "malformed_json", "not valid JSON")]:
+            with self.subTest(request=request), self.assertRaises(lienewton.RequestError) as caught:
+                lienewton.solve(request)
+            self.assertEqual((caught.exception.code, caught.exception.field), (code, ""))
+            self.assertIn(said, caught.exception.message)
+        status, expected = cli("solve", "[1, 2]")  # the CLI's code for the same document
+        self.assertEqual((status, expected["error"]["code"]), (2, "invalid_field"))
 
     def test_no_command(self):
         with self.assertRaises(ValueError):
