@@ -128,7 +128,7 @@ class Stepper {
       if (opt_.method != Method::fixed_point) used(stage.linear_solver);
       rec.residual = std::max(rec.residual, stage.residual);
       // A stage at its rounding floor (stagnated: tol is below what double resolves at this h, as on a stiff
-      // field) is solved as well as it can be; the implicit RKMK stages stop at the same floor (rkmk_stages.hpp).
+      // field) is solved as well as it can be; so is an implicit RKMK stage (rkmk_stages.hpp).
       if (!is_root(stage) || stage.branch != Branch::continued) {
         rec.status = is_root(stage) ? Status::fold : stage.status;
         failure_ = "stage " + std::to_string(i + 1) + " (h = " + format_number(dt) + "): " + stage.reason;

@@ -11,9 +11,12 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "core/integrate.hpp"
+#include "core/integrators/methods.hpp"
 
 namespace lienewton {
 namespace {
@@ -41,40 +44,80 @@ Jacobi jacobi(double u, double m) {
   return {std::sin(phi), std::cos(phi), std::cos(phi) / std::cos(previous - phi)};
 }
 
-TEST(RigidBodyClosedForm, BodyMomentumFollowsTheJacobiEllipticSolution) {
-  const Eigen::Vector3d inertia(1.0, 2.0, 3.0), m(0.6, 0.8, 0.5);  // the built-in's defaults
-  const Eigen::Vector3d m0(0.5, 0.0, 1.0);                           // |m0| = |m|, so y(0) m0 = m for a rotation
-  ASSERT_NEAR(m0.norm(), m.norm(), 1e-15);
-  const Eigen::Matrix3d r0 = Eigen::Quaterniond::FromTwoVectors(m0, m).toRotationMatrix();
-  const double e = 0.5 * m0.dot(m0.cwiseQuotient(inertia)), l2 = m0.squaredNorm();
-  const double i1 = inertia(0), i2 = inertia(1), i3 = inertia(2);
-  ASSERT_GT(l2, 2 * e * i2);
-  const double rate = std::sqrt((i3 - i2) * (l2 - 2 * e * i1) / (i1 * i2 * i3));
-  const double k2 = (i2 - i1) * (2 * e * i3 - l2) / ((i3 - i2) * (l2 - 2 * e * i1));
-  const auto closed_form = [&](double t) {
+// The problem's defaults (I = diag(1, 2, 3), m = (0.6, 0.8, 0.5)) from y(0) = r0, which takes m0 = (0.5, 0, 1) to m,
+// and the body momentum M(t) = y(t)^T m of that motion in closed form.
+struct ClosedForm {
+  Eigen::Vector3d inertia{1.0, 2.0, 3.0}, m{0.6, 0.8, 0.5};
+  Eigen::Vector3d m0{0.5, 0.0, 1.0};  // |m0| = |m|, so y(0) m0 = m for a rotation
+  Eigen::Matrix3d r0 = Eigen::Quaterniond::FromTwoVectors(m0, m).toRotationMatrix();
+  double e = 0.5 * m0.dot(m0.cwiseQuotient(inertia)), l2 = m0.squaredNorm();
+  double i1 = inertia(0), i2 = inertia(1), i3 = inertia(2);
+  double rate = std::sqrt((i3 - i2) * (l2 - 2 * e * i1) / (i1 * i2 * i3));
+  double k2 = (i2 - i1) * (2 * e * i3 - l2) / ((i3 - i2) * (l2 - 2 * e * i1));
+
+  Eigen::Vector3d operator()(double t) const {
     const Jacobi f = jacobi(rate * t, k2);
     const Eigen::Vector3d omega(std::sqrt((2 * e * i3 - l2) / (i1 * (i3 - i1))) * f.cn,
                                 std::sqrt((2 * e * i3 - l2) / (i2 * (i3 - i2))) * f.sn,
                                 std::sqrt((l2 - 2 * e * i1) / (i3 * (i3 - i1))) * f.dn);
     return Eigen::Vector3d(inertia.cwiseProduct(omega));
-  };
-  EXPECT_LE((closed_form(0.0) - m0).norm(), 1e-14) << "the closed form starts at M(0)";
-  EXPECT_GT((closed_form(3.0) - m0).norm(), 0.3) << "and moves far from it by t = 3";
-  for (double t_end : {1.0, 3.0}) {
+  }
+  // |M(t_end) - closed form| of an integration from r0 with the integrator's equal steps h.
+  double error(Integrator integrator, double h, double t_end) const {
     IntegrateRequest req;
     req.problem.kind = ProblemKind::rigid_body;
     req.problem.n = 3;
     req.problem.z = r0;
-    req.integrator = Integrator::rkmk_gauss3;
-    req.h = 1.0 / 32;
+    req.integrator = integrator;
+    req.h = h;
     req.t_end = t_end;
     req.reference = false;
     const IntegrateResult r = integrate(req);
-    ASSERT_EQ(r.status, Status::converged) << r.reason;
-    const Eigen::Vector3d body = Eigen::Matrix3d(r.y).transpose() * m;
-    const double error = (body - closed_form(t_end)).norm();
+    EXPECT_EQ(r.status, Status::converged) << to_string(integrator) << " h = " << h << ": " << r.reason;
+    return ((Eigen::Matrix3d(r.y).transpose() * m) - (*this)(t_end)).norm();
+  }
+};
+
+TEST(RigidBodyClosedForm, BodyMomentumFollowsTheJacobiEllipticSolution) {
+  const ClosedForm closed_form;
+  const Eigen::Vector3d& m0 = closed_form.m0;
+  ASSERT_NEAR(m0.norm(), closed_form.m.norm(), 1e-15);
+  ASSERT_GT(closed_form.l2, 2 * closed_form.e * closed_form.i2);
+  EXPECT_LE((closed_form(0.0) - m0).norm(), 1e-14) << "the closed form starts at M(0)";
+  EXPECT_GT((closed_form(3.0) - m0).norm(), 0.3) << "and moves far from it by t = 3";
+  for (double t_end : {1.0, 3.0}) {
+    const double error = closed_form.error(Integrator::rkmk_gauss3, 1.0 / 32, t_end);
     std::printf("t = %.0f: |M(t) - closed form| = %.2e\n", t_end, error);
     EXPECT_LE(error, 1e-8) << "t = " << t_end;
+  }
+}
+
+// The implicit RKMK stages are solved to the step's own scale, so a method's error falls with h^p until it meets
+// the rounding of the steps themselves, whose sum stays below 10 eps |M| per step (a bound rounding cannot break:
+// a few eps per step at most, and the errors of single steps partly cancel). Before the stage test was relative, the
+// stages kept an error of about the absolute tol (1e-13) per step once h was small: gauss3's error grew from 3e-15
+// at h = 2^-12 to 1.3e-10 at 2^-14. The line C h^p is fitted at h = 1/8, far above rounding, with a margin of 4.
+TEST(RigidBodyClosedForm, ImplicitRkmkKeepsItsOrderDownToRounding) {
+  const ClosedForm closed_form;
+  const double h0 = 1.0 / 8;
+#ifdef LIENEWTON_SANITIZED
+  const std::vector<int> halvings{12, 14};  // 2^-16 takes 65536 steps a method: the Release suite's
+#else
+  const std::vector<int> halvings{12, 14, 16};
+#endif
+  for (Integrator integrator : {Integrator::rkmk_gauss2, Integrator::rkmk_gauss3, Integrator::rkmk_radau2,
+                                Integrator::rkmk_radau3, Integrator::rkmk_lobatto3c}) {
+    const int p = order_of(integrator);
+    const double c = 4.0 * closed_form.error(integrator, h0, 1.0) / std::pow(h0, p);
+    for (int halving : halvings) {
+      const double h = std::ldexp(1.0, -halving), steps = 1.0 / h;
+      const double error = closed_form.error(integrator, h, 1.0);
+      const double rounding = 10.0 * std::numeric_limits<double>::epsilon() * steps * closed_form.m.norm();
+      const double bound = c * std::pow(h, p) + rounding;
+      std::printf("%s h = 2^-%d: error %.2e (bound %.2e)\n", std::string(to_string(integrator)).c_str(), halving, error,
+                  bound);
+      EXPECT_LE(error, bound) << to_string(integrator) << " at h = 2^-" << halving;
+    }
   }
 }
 

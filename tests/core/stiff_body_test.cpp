@@ -1,7 +1,8 @@
 // The stiff rigid body on SO(3) x R^3, the built-in problem stiff-body ("group": "SOxR"): its exact dg and dg_matrix
 // against central differences of g, the stage time reaching f(t) through the field, the default body at t = 1 for
-// k = 1e4 and k = 1e6 against scipy's Radau and DOP853 on the same ODE in R^9 x R^3 (stiff_body_reference.py), no
-// invariants reported, and its bad parameters 422 naming the field.
+// k = 1e4 and k = 1e6 against scipy's Radau and DOP853 on the same ODE in R^9 x R^3 (stiff_body_reference.py), the
+// implicit RKMK methods' errors falling with h down to rounding, no invariants reported, and its bad parameters 422
+// naming the field.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -117,6 +118,41 @@ TEST(StiffBody, DefaultBodyMatchesScipyRadauAndDop853) {
     EXPECT_FALSE(r.initial_invariants.any()) << name;
     EXPECT_FALSE(r.invariant_drifts.any()) << name;
     EXPECT_FALSE(r.steps.back().invariants.any()) << name;
+  }
+}
+
+// The implicit RKMK methods on the default body (k = c = 1e4) against scipy as h falls below the transient's scale
+// (h c / J_1 = 2.4 at 2^-12): quartering h never makes the error larger, until it meets the rounding of the steps
+// themselves (10 eps ||Y|| per step) plus scipy's own accuracy (4e-14). With stage tests absolute in tol, the stages
+// kept about tol (1e-13) of error in every step at small h, which grows as h falls.
+TEST(StiffBody, ImplicitRkmkErrorFallsWithTheStepDownToRounding) {
+  const test::StiffBodyCase& c = test::kStiffBodyCases[0];
+  ASSERT_EQ(c.k, 1e4);
+  const Eigen::MatrixXd expected = so3xr3::state(
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.rotation), Eigen::Map<const Eigen::Vector3d>(c.omega));
+#ifdef LIENEWTON_SANITIZED
+  const std::vector<int> halvings{10, 12};  // 2^-14 and 2^-16 take 16384 and 65536 steps a method: the Release suite's
+#else
+  const std::vector<int> halvings{10, 12, 14, 16};
+#endif
+  constexpr double kScipyAccuracy = 4e-14, kEpsilon = std::numeric_limits<double>::epsilon();
+  for (Integrator integrator : {Integrator::rkmk_gauss2, Integrator::rkmk_gauss3, Integrator::rkmk_radau2,
+                                Integrator::rkmk_radau3, Integrator::rkmk_lobatto3c}) {
+    double coarser = std::numeric_limits<double>::infinity();
+    for (int halving : halvings) {
+      IntegrateRequest req = stiff_body_request();
+      req.h = std::ldexp(1.0, -halving);
+      req.integrator = integrator;
+      req.reference = false;
+      const IntegrateResult r = integrate(req);
+      const std::string name = std::string(to_string(integrator)) + " at h = 2^-" + std::to_string(halving);
+      ASSERT_EQ(r.status, Status::converged) << name << ": " << r.reason;
+      const double error = (r.y - expected).norm();
+      const double rounding = 10.0 * kEpsilon * std::ldexp(1.0, halving) * expected.norm() + kScipyAccuracy;
+      std::printf("%s: ||Y - Y_scipy||_F = %.2e (rounding bound %.2e)\n", name.c_str(), error, rounding);
+      EXPECT_LE(error, std::max(coarser, rounding)) << name;
+      coarser = error;
+    }
   }
 }
 
