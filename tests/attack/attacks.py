@@ -945,17 +945,28 @@ def program_on_ninety_bodies(t, server_bin):
 
 
 def body_programs_leave_nothing(t, server_bin):
-    # 30 solves of a program on 22 bodies, one after another: the memory they took is given back when each ends,
-    # so the resident set afterwards is within 10 % (and 32 MiB) of where it started.
-    body = json.dumps({"g": "g = 0*y", "group": "SExR^22"})
-    t.request("POST", "/api/v1/solve", body, timeout=20.0)  # the first one's lasting allocations (caches, pools)
-    time.sleep(0.2)
+    # 30 solves of a program on 16 bodies, one after another: the memory they took is given back when each ends,
+    # so the resident set afterwards is within 10 % (and 32 MiB) of where it started. A solve that meets the
+    # battery's 3 s deadline (504: one takes 1.3-1.4 s on the sanitizer build under load, 22 bodies took 2.9-3.7 s)
+    # ends too and must leave nothing either; at least one must have finished, so that a whole solve is measured.
+    # Before derivatives were formed a pass at a time, each worker kept the stacked directions, 12k (11k)^2 doubles:
+    # 47 MB at k = 16.
+    body = json.dumps({"g": "g = 0*y", "group": "SExR^16"})
+    # Warm-up until the resident set settles: the first solve's lasting allocations (caches, pools) and, in the
+    # sanitizer build the battery runs against, ASan's quarantine, which keeps up to 256 MiB of freed blocks resident.
     baseline = server_rss_bytes(server_bin)
+    for _ in range(10):
+        t.request("POST", "/api/v1/solve", body, timeout=20.0)
+        time.sleep(0.2)
+        previous, baseline = baseline, server_rss_bytes(server_bin)
+        if abs(baseline - previous) < (8 << 20):
+            break
     statuses = [t.request("POST", "/api/v1/solve", body, timeout=20.0)[0] for _ in range(30)]
     time.sleep(0.2)
     after = server_rss_bytes(server_bin)
-    detail = f"answers {sorted(set(statuses))}, RSS {baseline >> 20} MiB before, {after >> 20} MiB after"
-    expect(all(s == 200 for s in statuses), detail)
+    detail = (f"answers {statuses.count(200)} x 200, {statuses.count(504)} x 504 of {len(statuses)}, "
+              f"RSS {baseline >> 20} MiB before, {after >> 20} MiB after")
+    expect(all(s in (200, 504) for s in statuses) and 200 in statuses, detail)
     expect(after <= baseline * 1.1 + (32 << 20), f"memory kept: {detail}")
     return detail
 
