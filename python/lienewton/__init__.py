@@ -112,14 +112,13 @@ def _body(request, fields):
         except ValueError as e:
             raise RequestError({"code": "malformed_json", "field": "",
                                 "message": f"the request is not valid JSON ({e})"}) from None
-    elif isinstance(request, _abc.Mapping):
-        body = dict(request)
     else:
-        body = None
-    if not isinstance(body, dict):
-        got = type(body if request is None or isinstance(request, (str, bytes)) else request).__name__
+        body = request
+    if not isinstance(body, _abc.Mapping):
         raise RequestError({"code": "invalid_field", "field": "",
-                            "message": f"the request must be a JSON object (a dict or its JSON text), got {got}"})
+                            "message": f"the request must be a JSON object (a dict or its JSON text), got "
+                                       f"{type(body).__name__}"})
+    body = dict(body)
     body.update(fields)
     return body
 

@@ -946,11 +946,11 @@ def program_on_ninety_bodies(t, server_bin):
 
 def body_programs_leave_nothing(t, server_bin):
     # 30 solves of a program on 16 bodies, one after another: the memory they took is given back when each ends,
-    # so the resident set afterwards is within 10 % (and 32 MiB) of where it started. A solve that meets the
-    # battery's 3 s deadline (504: one takes 1.3-1.4 s on the sanitizer build under load, 22 bodies took 2.9-3.7 s)
-    # ends too and must leave nothing either; at least one must have finished, so that a whole solve is measured.
-    # Before derivatives were formed a pass at a time, each worker kept the stacked directions, 12k (11k)^2 doubles:
-    # 47 MB at k = 16.
+    # so the resident set afterwards is within 10 % (and 32 MiB) of where it started. 16 bodies keep a solve well
+    # inside the battery's 3 s deadline on the sanitizer build under load (docs/service.md has the timings); a solve
+    # that meets it (504) ends too and must leave nothing either, and at least one must finish, so that a whole solve
+    # is measured. Before derivatives were formed a pass at a time, each worker kept the stacked directions,
+    # 12k (11k)^2 doubles: 47 MB at k = 16.
     body = json.dumps({"g": "g = 0*y", "group": "SExR^16"})
     # Warm-up until the resident set settles: the first solve's lasting allocations (caches, pools) and, in the
     # sanitizer build the battery runs against, ASan's quarantine, which keeps up to 256 MiB of freed blocks resident.

@@ -94,9 +94,9 @@ TEST(RigidBodyClosedForm, BodyMomentumFollowsTheJacobiEllipticSolution) {
 
 // The implicit RKMK stages are solved to the step's own scale, so a method's error falls with h^p until it meets
 // the rounding of the steps themselves, whose sum stays below 10 eps |M| per step (a bound rounding cannot break:
-// a few eps per step at most, and the errors of single steps partly cancel). Before the stage test was relative, the
-// stages kept an error of about the absolute tol (1e-13) per step once h was small: gauss3's error grew from 3e-15
-// at h = 2^-12 to 1.3e-10 at 2^-14. The line C h^p is fitted at h = 1/8, far above rounding, with a margin of 4.
+// a few eps per step at most, and the errors of single steps partly cancel). With a stage test absolute in tol, the
+// stages kept an error of about tol (1e-13) per step once h was small, and the error grew as h fell below 2^-12. The
+// line C h^p is fitted at h = 1/8, far above rounding, with a margin of 4.
 TEST(RigidBodyClosedForm, ImplicitRkmkKeepsItsOrderDownToRounding) {
   const ClosedForm closed_form;
   const double h0 = 1.0 / 8;
