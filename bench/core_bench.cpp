@@ -6,6 +6,7 @@
 //   Solve_*         a whole SO(3) Newton Version 1 solve (h = 0.5, exact differential) on rigid-body and
 //                   paper-linear vs the same algorithm on the baseline with the finite-difference differential
 //   Solve_Search/*  paper-sine N = 5: the method alone, through run_method with continuation off, and continued
+//   Certify_Segment/q  the branch certificate of one continuation link, on an algebra of dimension q
 //   Sweep_*         the paper's default sweep (paper-linear and paper-sine x 3 methods x N = 2..15 x
 //                   h = 2^-10..2^10): lienewton with finite-difference and with exact, vs the baseline on a
 //                   subset of h (extrapolated, see the label); "/short" is the reduced grid CI runs.
@@ -20,6 +21,7 @@
 
 #include "bench/alloc_count.hpp"
 #include "bench/eigen_baseline.hpp"
+#include "core/solvers/branch_certificate.hpp"
 #include "core/solvers/equation.hpp"
 #include "core/solvers/run_method.hpp"
 #include "core/groups/so3_group.hpp"
@@ -310,6 +312,24 @@ void Solve_Search(benchmark::State& state, Search search) {
 BENCHMARK_CAPTURE(Solve_Search, direct, Search::direct)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(Solve_Search, continuation_off, Search::off)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(Solve_Search, continued, Search::continued)->Unit(benchmark::kMicrosecond);
+
+// The branch certificate of one path link (branch_certificate.hpp) alone, on an algebra of dimension q (3: SO(3),
+// 10: SO(5), 120: SO(16)): its cost beside Solve_Search's whole continued solve on SO(5) in the same run.
+void Certify_Segment(benchmark::State& state) {
+  const int q = static_cast<int>(state.range(0));
+  const auto v = random_vectors(q, 0.1, 0.3, 7);
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(q, q);
+  const auto jacobian = [&] { return Eigen::MatrixXd(identity - 0.05 / std::sqrt(q) * Eigen::MatrixXd::Random(q, q)); };
+  BranchLink link{.x_a = v[0], .x_b = v[1], .tau_a = 0.0, .tau_b = 0.25, .d_a = jacobian(), .d_b = jacobian(),
+                  .d_mid = {}, .f_mid = {}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    link.d_mid[k] = jacobian();
+    link.f_mid[k] = 1e-3 * v[k + 2];
+  }
+  if (!certify_link(link).holds) state.SkipWithError("a link this near the identity must be certified");
+  for (auto _ : state) benchmark::DoNotOptimize(certify_link(link).contraction);
+}
+BENCHMARK(Certify_Segment)->Arg(3)->Arg(10)->Arg(120)->Unit(benchmark::kMicrosecond);
 
 // One Newton Version 1 iteration on SO(3) (exact differential), exactly as newton_group runs it: evaluate f
 // at y_n with the spectral form, assemble the 3x3 differential, LU-solve, y_{n+1} = y_n exp(u). Cycled over

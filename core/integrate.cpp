@@ -6,6 +6,7 @@
 #include "group_registry.hpp"
 #include "reference_solution.hpp"
 #include "integrators/methods.hpp"
+#include "solvers/iteration_monitor.hpp"
 #include "solvers/newton_step.hpp"
 #include "time_scale.hpp"
 #include "validation.hpp"
@@ -84,12 +85,24 @@ IntegrateResult integrate(const IntegrateRequest& request, const StepCallback& o
 IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallback& on_step) {
   const Eigen::MatrixXd y0 = req.problem.start();
   IntegrateResult res = req.problem.family().integrate(req, y0, on_step);
+  // More frames than steps: every step's state is a frame, and the answer says it has fewer than asked.
+  if (res.status == Status::converged && req.frames > 0 &&
+      res.frames.size() < static_cast<std::size_t>(req.frames) + 1)
+    res.reason += "; frames: " + std::to_string(req.frames) + " asked, but the run took " +
+                  std::to_string(res.frames.size() - 1) + " steps: every step's state is returned (" +
+                  std::to_string(res.frames.size()) + " frames with y(0))";
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
     const ReferenceSolution ref = reference_solution(req.problem, y0, req.t_end);
-    if (ref.y)
+    if (ref.y) {
       res.global_error = (res.y - *ref.y).norm();
-    else
+      res.reference_error = ref.error;
+      res.global_error_at_reference = *res.global_error <= kReferenceErrorFactor * ref.error;
+      if (res.global_error_at_reference)
+        res.reason += "; global_error is within " + format_number(kReferenceErrorFactor) +
+                      "x of the reference's estimated error " + format_number(ref.error) +
+                      ": it bounds the run's error, it does not measure it";
+    } else
       res.reason += "; global_error is null: " + ref.note;
     res.reference_seconds = thread_cpu_seconds() - start;
   }

@@ -65,6 +65,9 @@ struct IntegrateResult {
   std::string reason;
   std::vector<StepRecord> steps;
   std::optional<double> global_error;  // ||y_N - y_ref(t_end)||_F, when reference was requested
+  std::optional<double> reference_error;  // y_ref(t_end)'s estimated error (ReferenceSolution::error)
+  // global_error is within kReferenceErrorFactor of reference_error: it measures the reference as much as the run.
+  bool global_error_at_reference = false;
   InvariantValues initial_invariants{};  // the problem's invariants at y(0)
   InvariantValues invariant_scales{};    // what each drift is relative to (invariant_scales)
   InvariantValues invariant_drifts{};    // max_k |I_k - I_0| / scale over the steps taken (InvariantDrift)

@@ -19,10 +19,14 @@ inline constexpr double kReferenceTolerance = 1e-11;
 inline constexpr long long kMaxReferenceSteps = 1LL << 22;
 inline constexpr double kImplicitReferenceTolerance = 1e-9;
 inline constexpr long long kMaxImplicitReferenceSteps = 1LL << 14;
+// A global error within this factor of the reference's estimated error is not the run's own.
+inline constexpr double kReferenceErrorFactor = 10;
 
 struct ReferenceSolution {
   std::optional<Eigen::MatrixXd> y{};  // none where no method settled
-  double accuracy = 0;                 // the distance between its last two refinements
+  // Its estimated error: the distance between its last two refinements over 2^p - 1, p the method's order
+  // (Richardson: the finer's error when both are in the asymptotic regime).
+  double error = 0;
   std::string note;                    // how it was computed, or why there is none
 };
 

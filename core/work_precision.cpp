@@ -59,11 +59,10 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
   return best;
 }
 
-// The observed order (order_fit.hpp) over the points in the asymptotic regime: converged, with an error well above
-// the reference's own (kFloorFactor times its measured accuracy) and well below the solution's size (kScaleFraction of
-// ||y_ref||), and consecutive slopes that agree (asymptotic_range). Each point says whether it is in the fit and,
-// if not, why; an order needs kMinFitPoints of them, else it is null and fit_reason says why.
-constexpr double kFloorFactor = 100;
+// The observed order (order_fit.hpp) over the points in the asymptotic regime: converged, with an error above
+// the reference's own (kReferenceErrorFactor times its estimated error) and well below the solution's size
+// (kScaleFraction of ||y_ref||), and consecutive slopes that agree (asymptotic_range). Each point says whether it is in
+// the fit and, if not, why; an order needs kMinFitPoints of them, else it is null and fit_reason says why.
 constexpr double kScaleFraction = 5e-2;
 constexpr std::size_t kMinFitPoints = 3;
 
@@ -76,10 +75,7 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
     return;
   }
   const double size = reference.y ? reference.y->norm() : 0.0;
-  // The reference's accuracy is the distance between its last two refinements, itself ~15x the error of the finer
-  // (RKMK4's Richardson factor): the floor stands ~1500x above the reference's own error, not above the tolerance
-  // its refinement stopped at.
-  const double floor = std::max(kErrorAtRounding, kFloorFactor * reference.accuracy);
+  const double floor = std::max(kErrorAtRounding, kReferenceErrorFactor * reference.error);
   const double ceiling = kScaleFraction * size;
   std::vector<double> h, error;
   std::vector<WorkPrecisionPoint*> usable;
@@ -97,8 +93,8 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
       p.excluded = "the run's result is not finite";
     } else if (p.error <= floor) {
       ++at_floor;
-      p.excluded = "its error is within " + format_number(kFloorFactor) + "x of the reference's accuracy (below " +
-                   format_number(floor) + ")";
+      p.excluded = "its error is within " + format_number(kReferenceErrorFactor) +
+                   "x of the reference's estimated error, or at rounding (below " + format_number(floor) + ")";
     } else if (p.error >= ceiling) {
       ++too_large;
       p.excluded = "its error is not small against the solution (at least " + format_number(kScaleFraction) +
@@ -181,6 +177,7 @@ WorkPrecisionResult work_precision_validated(const WorkPrecisionRequest& request
   const double ref_start = thread_cpu_seconds();
   const ReferenceSolution reference = reference_solution(req.problem, req.problem.start(), req.t_end);
   res.reference_seconds = thread_cpu_seconds() - ref_start;
+  if (reference.y) res.reference_error = reference.error;
 
   res.series.resize(req.choices.size());
   for (std::size_t c = 0; c < req.choices.size(); ++c) {

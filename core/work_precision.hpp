@@ -57,6 +57,7 @@ struct WorkPrecisionSeries {
 
 struct WorkPrecisionResult {
   std::vector<WorkPrecisionSeries> series;
+  std::optional<double> reference_error;  // the reference's estimated error (none without a reference)
   double reference_seconds = 0;
   double seconds = 0;
 };

@@ -1020,6 +1020,8 @@ json to_json(const IntegrateResult& r) {
               {"reason", r.reason},
               {"steps", std::move(steps)},
               {"global_error", optional_number(r.global_error)},
+              {"reference_error", optional_number(r.reference_error)},
+              {"global_error_at_reference", r.global_error_at_reference},
               {"orthogonality_error", finite_or_null(r.orthogonality_error)},
               {"total_iterations", r.total_iterations},
               {"substeps", r.substeps},
@@ -1077,6 +1079,7 @@ json to_json(const WorkPrecisionResult& r) {
   for (const auto& s : r.series) series.push_back(to_json(s));
   return json{{"series", std::move(series)},
               {"seconds", finite_or_null(r.seconds)},
+              {"reference_error", optional_number(r.reference_error)},
               {"reference_seconds", finite_or_null(r.reference_seconds)}};
 }
 

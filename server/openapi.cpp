@@ -395,6 +395,12 @@ json schemas() {
   s["StepRecord"]["properties"] = invariant_numbers(s["StepRecord"]["properties"], "", "", "at the step's end state: ");
   s["IntegrateResult"] = object({{"status", status}, {"reason", json{{"type", "string"}}}, {"steps", array_of(ref("StepRecord"))},
                                  {"global_error", nullable_number("||y_N - y_ref(t_end)||_F")},
+                                 {"reference_error", nullable_number("y_ref(t_end)'s estimated error: the distance of its last two "
+                                                                     "refinements over 2^p - 1, p the reference method's order")},
+                                 {"global_error_at_reference",
+                                  json{{"type", "boolean"},
+                                       {"description", "global_error is within 10x of reference_error: it bounds the run's "
+                                                       "error rather than measuring it"}}},
                                  {"orthogonality_error", nullable_number("")},
                                  {"total_iterations", integer("iterations summed over every stage of every step")},
                                  {"substeps", integer("steps taken, halved ones counted as theirs")},
@@ -430,13 +436,15 @@ json schemas() {
                                                                "the run's drift (as IntegrateResult's) of "), {}, false))},
                                    {"fitted_order", nullable_number("observed order: least-squares slope of log error vs log h "
                                                                     "over the points in the asymptotic regime: converged on the solution's "
-                                                                    "branch, the error 100x above the reference's accuracy and below 0.05 "
+                                                                    "branch, the error 10x above the reference's estimated error and below 0.05 "
                                                                     "||y_ref||, consecutive slopes agreeing (null with fewer than three; "
                                                                     "fit_reason says why)")},
                                    {"fit_reason", json{{"type", "string"}, {"description", "how the order was fitted, or why it is null"}}},
                                    {"fit_h", array_of(number("an h the order is fitted from"))}},
                                   {}, false);
   s["WorkPrecisionResult"] = object({{"series", array_of(ref("WorkPrecisionSeries"))}, {"seconds", number("")},
+                                     {"reference_error", nullable_number("the reference's estimated error (as IntegrateResult's); "
+                                                                         "points within 10x of it are not fitted")},
                                      {"reference_seconds", number("")}}, {}, false);
   s["RenderFramesRequest"] = json{
       {"description", "A SolveRequest (n = 3; its iterates are drawn) or an IntegrateRequest (detected by kind = "

@@ -12,7 +12,7 @@ namespace lienewton {
 
 // reference_solution(): RKMK4 at kReferenceStepsPerUnit steps per unit of time or more, the steps doubled until two
 // successive finite solutions agree to kReferenceTolerance (RKMK4's error at the finer is about 1/15 of their
-// distance): a fast field (the heavy top's spin of 150 rad/s) needs a hundred times the steps a slow one does, a
+// distance: the error it reports): a fast field (the heavy top's spin of 150 rad/s) needs a hundred times the steps a slow one does, a
 // stiff one (an eigenvalue -1e4) the steps that bring h |lambda| inside RKMK4's stability interval; its overflowing
 // runs are skipped. Past kMaxReferenceSteps, rkmk-radau3 (L-stable) refined the same way from 64 steps.
 template <LieGroup G>
@@ -36,8 +36,9 @@ ReferenceSolution reference_on(const G& group, const ProblemSpec& problem, const
     if (r.status != Status::converged) return Eigen::MatrixXd::Constant(y0.rows(), y0.cols(), NAN);
     return r.y;
   };
-  // Doubles the steps of run from `steps` until two finite solutions agree to tolerance relative or max is reached.
-  const auto refine = [&](const auto& run, long long steps, long long max, double tolerance,
+  // Doubles the steps of run (a method of order `order`) from `steps` until two finite solutions agree to tolerance
+  // relative or max is reached.
+  const auto refine = [&](const auto& run, int order, long long steps, long long max, double tolerance,
                           const char* name) -> ReferenceSolution {
     Eigen::MatrixXd coarse = run(steps);
     while (steps < max) {
@@ -46,7 +47,8 @@ ReferenceSolution reference_on(const G& group, const ProblemSpec& problem, const
       if (fine.allFinite() && coarse.allFinite()) {
         const double distance = (fine - coarse).norm();
         if (distance <= tolerance * std::max(1.0, fine.norm()))
-          return {std::move(fine), distance, std::string(name) + " at " + std::to_string(steps) + " steps"};
+          return {std::move(fine), distance / static_cast<double>((1 << order) - 1),
+                  std::string(name) + " at " + std::to_string(steps) + " steps"};
       }
       coarse = std::move(fine);
     }
@@ -55,9 +57,9 @@ ReferenceSolution reference_on(const G& group, const ProblemSpec& problem, const
   // The first comparison is against half the steps, so a slow field costs 1.5 times one run at
   // kReferenceStepsPerUnit, whose solution it returns.
   const long long first = std::max(32LL, static_cast<long long>(std::ceil(t_end * kReferenceStepsPerUnit / 2)));
-  if (ReferenceSolution r = refine(explicit_run, first, kMaxReferenceSteps, kReferenceTolerance, "rkmk4"); r.y)
+  if (ReferenceSolution r = refine(explicit_run, 4, first, kMaxReferenceSteps, kReferenceTolerance, "rkmk4"); r.y)
     return r;
-  if (ReferenceSolution r = refine(implicit_run, 64, kMaxImplicitReferenceSteps, kImplicitReferenceTolerance,
+  if (ReferenceSolution r = refine(implicit_run, 3, 64, kMaxImplicitReferenceSteps, kImplicitReferenceTolerance,
                                    "rkmk-radau3");
       r.y)
     return r;

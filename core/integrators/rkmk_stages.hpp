@@ -22,7 +22,8 @@
 // from it. continued_stages() accepts the method's solve when its iterates contract (kMaxContraction; the fixed
 // point's kFixedPointContraction) and its Theta lies within acceptance_radius of a prediction on the branch:
 //   h ||dg_{y_k}|| <= 1   from the caller's start, around the branch's tangent Theta_i = c_i h g(t_k, y_k) (the
-//                         tests continuation.hpp applies to a stage of (1.1));
+//                         tests continuation.hpp applies to a stage of (1.1)), and the segment from h = 0 certified
+//                         (certified_link: no other branch between);
 //   h ||dg_{y_k}|| > 1    (stiff) from the caller's start under the test above when the caller asks (the last
 //                         step's root passed that test: the tangent still guides this motion) and the start is a
 //                         prediction; otherwise, or where that fails, from K = 0, around its first Newton iterate:
@@ -32,7 +33,8 @@
 //                         in [0, h] (linearisation_regular(): J's large eigenvalues dissipative); where it may not,
 //                         as the tangent's regime;
 // otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
-// predictor; exact Newton corrector with the same two tests; step controlled as continuation.hpp's), and the
+// predictor; exact Newton corrector with the same two tests and each link certified; step controlled as
+// continuation.hpp's), and the
 // method's solve at h must stay at the branch's root. docs/integrators.md.
 #include <Eigen/LU>
 #include <algorithm>
@@ -46,6 +48,7 @@
 #include "core/groups/bernoulli.hpp"
 #include "core/problems.hpp"
 #include "core/solver_options.hpp"
+#include "core/solvers/branch_certificate.hpp"
 #include "core/solvers/continuation.hpp"
 #include "core/solvers/eigenvalues.hpp"
 #include "core/solvers/iteration_monitor.hpp"
@@ -106,11 +109,17 @@ class RkmkStages {
   // eigenvalues at every step: regularity is then not known, and the stages follow the branch from h = 0.
   bool linearisation_regular() const {
     if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return false;
-    const Eigen::VectorXcd mu = eigenvalues_of(Eigen::MatrixXd(jacobian_at_start()));
+    const Eigen::VectorXcd& mu = eigenvalues_at_start();
     const double rho = eigenvalues_of(tab_->a).cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i < mu.size(); ++i)
       if (h_ * std::abs(mu[i]) * rho >= 1.0 && mu[i].real() > 0.0) return false;
     return true;
+  }
+  // h max(-Re mu) over the eigenvalues mu of J = dg_{y_k}: how strongly the step damps its fastest decaying
+  // component (0 where the eigenvalues would cost O(q^3) at every step, as for linearisation_regular()).
+  double dissipation() const {
+    if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return 0.0;
+    return std::max(0.0, h_ * -eigenvalues_at_start().real().minCoeff());
   }
   Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
   Vector theta(const Eigen::VectorXd& k, int i) const {
@@ -403,8 +412,34 @@ class RkmkStages {
     }
     return *jacobian_at_start_;
   }
+  const Eigen::VectorXcd& eigenvalues_at_start() const {
+    if (!eigenvalues_at_start_) eigenvalues_at_start_ = eigenvalues_of(Eigen::MatrixXd(jacobian_at_start()));
+    return *eigenvalues_at_start_;
+  }
   mutable std::optional<Matrix> jacobian_at_start_;
+  mutable std::optional<Eigen::VectorXcd> eigenvalues_at_start_;
 };
+
+// Whether the stages k_b at tau_b are the root continued from the root k_a at tau_a: the Krawczyk-type certificate
+// of branch_certificate.hpp on the stacked system F(K, tau), with its exact Jacobian. Above kCertificateMaxDim the
+// dense algebra would outweigh the step: the tests of the file comment decide alone.
+template <LieGroup G>
+bool certified_link(const RkmkStages<G>& sys, const Eigen::VectorXd& k_a, double tau_a, const Eigen::VectorXd& k_b,
+                    double tau_b) {
+  if (sys.size() > kCertificateMaxDim) return true;
+  const auto at = [&](double tau, const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+    const RkmkStages<G> s = sys.at_step(tau);
+    const auto e = s.evaluate(x);
+    if (f) *f = e.f;
+    return Eigen::MatrixXd(typename RkmkStages<G>::Matrix(s.jacobian(x, e, Differential::exact)));
+  };
+  const Eigen::VectorXd c = (k_a + k_b) / 2;
+  BranchLink link{.x_a = k_a, .x_b = k_b, .tau_a = tau_a, .tau_b = tau_b, .d_a = at(tau_a, k_a, nullptr),
+                  .d_b = at(tau_b, k_b, nullptr), .d_mid = {}, .f_mid = {}};
+  const auto taus = BranchLink::taus(tau_a, tau_b);
+  for (std::size_t i = 0; i < taus.size(); ++i) link.d_mid[i] = at(taus[i], c, &link.f_mid[i]);
+  return certify_link(link).holds;
+}
 
 // The stages continued from h = 0 (see the file comment): the method's solve from its start (stiff: from K = 0,
 // unless start_first), checked; else the branch followed from h = 0 and the method's solve at h from its root. The
@@ -418,6 +453,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   constexpr int kMaxPathSteps = 400;
   constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
   constexpr double kStiff = 1.0;            // h ||dg_{y_k}||_F above which the step starts linearly implicit
+  constexpr double kDissipative = 2.0;      // h |Re mu| from which the linearisation's argument stands alone
   const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff;
   const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
   const Eigen::VectorXd tangent = sys.thetas(root0);
@@ -444,16 +480,23 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     return s;
   };
   StageSolution first;
+  // A root must also be certified continued from h = 0 (certified_link), unless the step is dissipative: h |Re mu|
+  // at least kDissipative for an eigenvalue of dg_{y_k}, where no fixed matrix contracts over [0, h] and the
+  // linearisation's argument decides (docs/continuation.md). A stiff field that merely turns fast is certified.
+  const bool dissipative = stiff && sys.dissipation() >= kDissipative;
+  const auto on_branch = [&](const StageSolution& s) {
+    return dissipative || certified_link(sys, root0, 0.0, s.k, sys.h());
+  };
   const auto from_start = [&] {
     first = sys.solve(start, method, d, opt, simplified);
-    return near(first, tangent);
+    return near(first, tangent) && on_branch(first);
   };
   const bool tried = !stiff || (start_first && !start.isZero(0.0));
   if (tried && from_start()) return accepted(std::move(first));
   if (stiff && sys.linearisation_regular()) {
     if (tried) count(first);
     first = sys.solve(Eigen::VectorXd::Zero(sys.size()), method, d, opt, simplified);
-    if (near(first, sys.thetas(first.first_iterate))) return accepted(std::move(first));
+    if (near(first, sys.thetas(first.first_iterate)) && on_branch(first)) return accepted(std::move(first));
   } else if (!tried && from_start()) {
     return accepted(std::move(first));
   }
@@ -471,7 +514,8 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     const StageSolution c = at.solve(pred, Method::newton_group, Differential::exact, corrector);
     count(c);
     const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
-    if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move)) {
+    if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move) &&
+        (move <= kUncertifiedMove || certified_link(sys, k, tau, c.k, next))) {
       slope = (c.k - k) / (next - tau);
       k = c.k;
       tau = next;

@@ -10,16 +10,21 @@
 //   predictor   x + ds t, its move in v at most kMaxPredictorMove;
 //   corrector   Newton on the bordered system F(x) = 0, t^T (x - x_pred) = 0, accepted only when its corrections
 //               contract by kMaxContraction (affine covariant Newton: Deuflhard, "Newton Methods for Nonlinear
-//               Problems", 2004, sec. 5.1) and stay within kAcceptRadius of the predictor's move in v, and the
-//               tangent turns by less than kMaxTurn; otherwise ds is halved;
+//               Problems", 2004, sec. 5.1) and stay within kAcceptRadius of the predictor's move in v, the
+//               tangent turns by less than kMaxTurn, and the link from the last point is certified (below), unless
+//               the branch turned back along it (a fold) or it moves v by at most kUncertifiedMove (near a fold no
+//               link certifies); otherwise ds is halved;
 //   fold        the tangent's tau-component changes sign: the branch turns back at fold_h (interpolated), and no
 //               root continued from z exists beyond it;
 //   at h        when the predictor passes h, the method's own solve at exactly h starts from the predictor there
 //               (the explicit Lie-Euler value when the path starts at (0, 0)); when the corrector carries tau past
 //               h instead, from the secant between the last two path points at tau = h; its root is the continued one when
-//               the same contraction and radius tests hold of its iterates. Otherwise the path's corrector at
-//               fixed tau = h computes the continued root and the method starts there; failing that the path goes
-//               on with a shorter step.
+//               the same contraction and radius tests hold of its iterates and the segment from the last path point
+//               to it is certified (branch_certificate.hpp: one root in a ball around the segment for every tau
+//               between, carried continuously; the radius test alone once took a root of another branch that lay
+//               nearer the tangent's prediction on a curved branch). Otherwise the path's corrector at fixed
+//               tau = h computes the root, certified the same way, and the method starts there; failing that the
+//               path goes on with a shorter step, down to links short enough to certify.
 // The path's own Newton uses the exact D_v F (the search must know the branch's geometry, whatever differential
 // the method uses); the caller times the whole search. Only the method's solve at h decides the result's status, y, residual and trace.
 #include <Eigen/LU>
@@ -33,6 +38,7 @@
 
 #include "core/cancellation.hpp"
 #include "core/solver_options.hpp"
+#include "branch_certificate.hpp"
 #include "eigenvalues.hpp"
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
@@ -53,6 +59,8 @@ inline constexpr double kFirstStep = 1.0 / 16;      // a path step at most doubl
 inline constexpr double kMaxTurn = 0.5;             // radians between successive tangents
 inline constexpr int kFoldBisections = 30;          // to locate a fold ...
 inline constexpr double kFoldBracket = 1e-5;        // ... within this arclength (relative): fold_h to ~1e-10
+inline constexpr int kCertificateMaxDim = 128;      // the largest algebra whose links are certified ...
+inline constexpr double kUncertifiedMove = kAcceptFloor;  // ... and path steps moving v by more than this
 
 // How far from a prediction that moved by `move` (in the algebra) its corrected root may lie.
 inline double acceptance_radius(double move) { return std::min(kMaxCorrection, kAcceptRadius * move + kAcceptFloor); }
@@ -116,7 +124,7 @@ class BranchPath {
       ds = std::min(ds, kMaxPredictorMove / std::max(t.v.norm(), 1e-300));
       if (t.th > 0.0 && x.h + ds * t.th >= h_) {
         const double to_h = (h_ - x.h) / t.th;
-        if (auto r = at_h(Point{x.v + to_h * t.v, h_}, to_h * t.v.norm(), PathStep{t.th, to_h}, first))
+        if (auto r = at_h(x, Point{x.v + to_h * t.v, h_}, to_h * t.v.norm(), PathStep{t.th, to_h}, first))
           return finish(std::move(*r));
         if (first && then_linear_) {
           if (auto r = linearly_implicit()) return finish(std::move(*r));
@@ -150,8 +158,15 @@ class BranchPath {
         // the path beyond h, where no step leads back.
         const double w = (h_ - x.h) / (next->point.h - x.h);
         const Point pred{x.v + w * (next->point.v - x.v), h_};
-        if (auto r = at_h(pred, (pred.v - x.v).norm(), PathStep{tn.th, w * ds}, first)) return finish(std::move(*r));
+        if (auto r = at_h(x, pred, (pred.v - x.v).norm(), PathStep{tn.th, w * ds}, first))
+          return finish(std::move(*r));
         first = false;
+        ds /= 2;
+        continue;
+      }
+      // Another branch may have taken the corrector: a shorter link. Near a fold D_v F is almost singular and no
+      // link certifies; below kUncertifiedMove the radius test's floor alone keeps the branch.
+      if (ds * t.v.norm() > kUncertifiedMove && !certified(x, next->point)) {
         ds /= 2;
         continue;
       }
@@ -233,8 +248,10 @@ class BranchPath {
   // A stiff stage (h ||dg_z||_F > 1), where the tangent's prediction is no guide, predicted by its linearly implicit
   // value v = (I - h dg_z)^-1 h g(z), the zero of F linearised at (0, 0) (3.22): when I - tau dg_z stays regular for
   // every tau in [0, h] (no eigenvalue mu of dg_z with h |mu| >= 1 and Re mu > 0), the linearisation's root is
-  // continuous from v = 0, so a root within the acceptance radius of v, reached by contracting steps, is the
-  // continued one, as for an implicit RKMK stage (rkmk_stages.hpp). Its linear solve counts as an iteration.
+  // continuous from v = 0, so a root within the acceptance radius of v, reached by contracting steps, is taken as the
+  // continued one, as for an implicit RKMK stage (rkmk_stages.hpp). That is an argument about the linearisation, not
+  // a certificate: a fixed A cannot contract over [0, h] when h |mu| >> 1 (docs/continuation.md). Its linear solve
+  // counts as an iteration.
   std::optional<SolveResult> linearly_implicit() {
     const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
     if (!(h_ * j.norm() > 1.0)) return std::nullopt;
@@ -248,7 +265,7 @@ class BranchPath {
     if (!x.allFinite()) return std::nullopt;
     Point pred{zero_vector(group_), h_};
     pred.v = x;
-    return at_h(pred, x.norm(), PathStep{}, false);
+    return at_h(Point{zero_vector(group_), 0.0}, pred, x.norm(), PathStep{}, false, Link::linearised);
   }
 
   Tangent tangent_at_start() const {
@@ -334,28 +351,34 @@ class BranchPath {
     double dh_ds = 0;
     double ds = 0;
   };
-  // The method's solve at h from the prediction pred, which moved v by `move` (or from z, the first time, with
-  // first_from_z), then from the path's own root at h; a result when one of them reached the continued root, or
-  // when the method fails from that root itself (the method's answer at h, which the caller labels).
-  std::optional<SolveResult> at_h(const Point& pred, double move, PathStep step, bool first) {
+  // The method's solve at h from the prediction pred, made at the path's point `from` and moving v by `move` (or
+  // from z, the first time, with first_from_z), then from the path's own root at h; a result when one of them
+  // reached the continued root, or when the method fails from that root itself (the method's answer at h, which the
+  // caller labels).
+  // How the link from `from` to the root at h is shown to follow the branch: certified (branch_certificate.hpp), or
+  // by the linearised argument of linearly_implicit() for a stiff stage.
+  enum class Link { certified, linearised };
+  std::optional<SolveResult> at_h(const Point& from, const Point& pred, double move, PathStep step, bool first,
+                                  Link link = Link::certified) {
     const double radius = acceptance_radius(move);
+    const std::optional<Point> certify_from = link == Link::certified ? std::optional<Point>(from) : std::nullopt;
     const Element y_pred = group_.times_exp(eq_.z(), pred.v);
     const bool from_z = first && first_from_z_;
     if (group_.angle(group_.spectral(pred.v)) < G::kLogRadius) {
       SolveResult r = solve_from(from_z ? eq_.z() : y_pred);
-      if (is_continued(r, pred, radius)) return labelled(std::move(r), Branch::continued);
+      if (is_continued(r, certify_from, pred, radius)) return labelled(std::move(r), Branch::continued);
       spent(r);
     }
     const Tangent fixed_h{zero_vector(group_), 1.0};
     const auto root = correct(pred, fixed_h, move);
-    if (!root) return std::nullopt;
+    if (!root || (certify_from && !certified(*certify_from, root->point))) return std::nullopt;
     record(PathPointKind::path, root->point, step.dh_ds, step.ds, root->iterations, root->residual,
            Status::converged);
     const Element y_root = group_.times_exp(eq_.z(), root->point.v);
     if (group_.angle(group_.spectral(root->point.v)) >= G::kLogRadius) return beyond_log(root->point);
     SolveResult r = solve_from(y_root);
     const double near = 1e-6 * (1.0 + root->point.v.norm());
-    if (is_continued(r, root->point, near)) return labelled(std::move(r), Branch::continued);
+    if (is_continued(r, std::nullopt, root->point, near)) return labelled(std::move(r), Branch::continued);
     // The method does not keep the continued root from the root itself: its answer, and that it is not z's.
     const Branch branch = is_root(r) ? Branch::other : Branch::unchecked;
     r.reason = "the method, started at the root continued from z (||F|| = " + format_number(root->residual) +
@@ -373,7 +396,7 @@ class BranchPath {
     const Point pred{to_h * t.v, h_};
     if (move <= kMaxPredictorMove && group_.angle(group_.spectral(pred.v)) < G::kLogRadius) {
       SolveResult r = solve_from(first_from_z_ ? eq_.z() : group_.times_exp(eq_.z(), pred.v));
-      if (is_continued(r, pred, acceptance_radius(move))) return labelled(std::move(r), Branch::continued);
+      if (is_continued(r, std::nullopt, pred, acceptance_radius(move))) return labelled(std::move(r), Branch::continued);
       spent(r);
     }
     SolveResult r = solve_from(eq_.start());
@@ -391,17 +414,43 @@ class BranchPath {
     return r;
   }
 
-  // Whether r's y is the root nearest the prediction pred (within radius): the tests of the file comment, and
-  // its coordinates v = log(z^-1 y) within radius of pred's.
-  bool is_continued(const SolveResult& r, const Point& pred, double radius) const {
+  // Whether r's y is the root nearest the prediction pred (within radius): the tests of the file comment, its
+  // coordinates v = log(z^-1 y) within radius of pred's and, given the path's point `from` the prediction was made
+  // at, the segment from there to v certified.
+  bool is_continued(const SolveResult& r, const std::optional<Point>& from, const Point& pred, double radius) const {
     if (!contracted_to_root(r, method_)) return false;
     try {
       double angle = 0;
       const Vector v = group_.log_vector(group_.compose(group_.inverse(eq_.z()), Element(r.y)), angle);
-      return (v - pred.v).norm() <= radius;
+      return (v - pred.v).norm() <= radius && (!from || certified(*from, Point{v, h_}));
     } catch (const LogDomainError&) {
       return false;
     }
+  }
+
+  // Whether the root `to` is the one continued from the path's point `from` (branch_certificate.hpp), with
+  // D_v F(v, tau) = I - tau M(v), M(v) = dg_{z exp v} dexp_v, and F(v, tau) = v - tau g(z exp v) (3.21), (3.22).
+  // Above kCertificateMaxDim its dense O(q^3) algebra would outweigh the step it checks: the path's tests decide.
+  bool certified(const Point& from, const Point& to) const {
+    if (q_ > kCertificateMaxDim) return true;
+    const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(q_, q_);
+    const Equation<G> unit = eq_.at_step(1.0);  // D_v F = I - M at tau = 1
+    const auto m_at = [&](const typename Equation<G>::Point& p) {
+      return Eigen::MatrixXd(identity - Eigen::MatrixXd(DynamicOperator<G>(unit.dftilde_matrix(p, Differential::exact))));
+    };
+    const Vector c = (from.v + to.v) / 2;
+    const auto at_c = unit.at_algebra(c);
+    const Eigen::MatrixXd m_c = m_at(at_c);
+    const Eigen::VectorXd g_c(eq_.field()->g(at_c.y));
+    BranchLink link{.x_a = Eigen::VectorXd(from.v), .x_b = Eigen::VectorXd(to.v), .tau_a = from.h, .tau_b = to.h,
+                    .d_a = from.h == 0.0 ? identity : Eigen::MatrixXd(identity - from.h * m_at(unit.at_algebra(from.v))),
+                    .d_b = identity - to.h * m_at(unit.at_algebra(to.v)), .d_mid = {}, .f_mid = {}};
+    const auto taus = BranchLink::taus(from.h, to.h);
+    for (std::size_t k = 0; k < taus.size(); ++k) {
+      link.d_mid[k] = identity - taus[k] * m_c;
+      link.f_mid[k] = Eigen::VectorXd(c) - taus[k] * g_c;
+    }
+    return certify_link(link).holds;
   }
 
   void spent(const SolveResult& r) { extra_iterations_ += r.iterations; }

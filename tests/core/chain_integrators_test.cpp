@@ -9,6 +9,7 @@
 
 #include "core/chain.hpp"
 #include "core/integrate.hpp"
+#include "core/solvers/continuation.hpp"
 #include "tests/core/chain_flat_reference.hpp"
 
 namespace lienewton {
@@ -88,6 +89,9 @@ TEST(ChainIntegrators, DirkAndRadauConvergeToTheFlatRk4ReferenceAtTheirOrders) {
 // iterations on the stall rule: two per stage, four per dirk-cg2 step after the first, at any number of bodies. The
 // first step, from rest, finds its first stage's root too far from the tangent's prediction to accept it and starts
 // again from the linearly implicit value (continuation.hpp): at most six, where following the branch took 8 to 11.
+// Up to 128 coordinates (k <= 10) the tangent's root must also pass the branch certificate (docs/continuation.md),
+// which these stiff spring modes defeat at this step: each stage is then solved again from its linearly implicit
+// value, twice the iterations.
 TEST(ChainIntegrators, DirkStagesStopWhereRoundingLeavesThem) {
   for (int k : {2, 8, 32, 128}) {
     IntegrateRequest req;
@@ -101,9 +105,10 @@ TEST(ChainIntegrators, DirkStagesStopWhereRoundingLeavesThem) {
     const IntegrateResult r = integrate(req);
     ASSERT_EQ(r.status, Status::converged) << "k " << k << ": " << r.reason;
     ASSERT_EQ(r.steps.size(), 16u);
-    EXPECT_LE(r.steps[0].iterations, 6) << "k " << k;
+    const int per_step = 12 * k <= kCertificateMaxDim ? 8 : 4;  // SE(3) x R^6: 12 coordinates a body
+    EXPECT_LE(r.steps[0].iterations, per_step + 2) << "k " << k;
     for (std::size_t i = 1; i < r.steps.size(); ++i) {
-      EXPECT_LE(r.steps[i].iterations, 4) << "k " << k << ", step " << i;
+      EXPECT_LE(r.steps[i].iterations, per_step) << "k " << k << ", step " << i;
       EXPECT_LE(r.steps[i].residual, 1e-9) << "k " << k << ", step " << i;
     }
   }

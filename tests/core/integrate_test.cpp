@@ -84,6 +84,11 @@ TEST(Integrators, FramesAndStepRecords) {
   req.h = 0.1;  // 10 steps, frames = 3: every floor(10 / 3) = 3rd step and the last
   req.frames = 3;
   EXPECT_EQ(integrate(req).frame_steps, (std::vector<int>{0, 3, 6, 9, 10}));
+  req.frames = 25;  // more than the 10 steps: every step, and the answer says so
+  const IntegrateResult every = integrate(req);
+  EXPECT_EQ(every.frames.size(), 11u);
+  EXPECT_NE(every.reason.find("frames: 25 asked, but the run took 10 steps"), std::string::npos) << every.reason;
+  req.frames = 3;
   for (const auto& s : r.steps) {
     EXPECT_GE(s.iterations, 1);
     EXPECT_LE(s.residual, req.solver.tol);
