@@ -453,7 +453,6 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   constexpr int kMaxPathSteps = 400;
   constexpr double kPathTolerance = 1e-10;  // h ||F|| at the path's points before h
   constexpr double kStiff = 1.0;            // h ||dg_{y_k}||_F above which the step starts linearly implicit
-  constexpr double kDissipative = 2.0;      // h |Re mu| from which the linearisation's argument stands alone
   const bool stiff = method != Method::fixed_point && sys.stiffness() > kStiff;
   const Eigen::VectorXd root0 = sys.constant(sys.g_at_start());
   const Eigen::VectorXd tangent = sys.thetas(root0);
@@ -515,7 +514,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
     count(c);
     const double move = (at.thetas(pred) - sys.at_step(tau).thetas(k)).norm();
     if (c.status == Status::converged && (at.thetas(c.k) - at.thetas(pred)).norm() <= acceptance_radius(move) &&
-        (move <= kUncertifiedMove || certified_link(sys, k, tau, c.k, next))) {
+        (move <= kUncertifiedMove || dissipative || certified_link(sys, k, tau, c.k, next))) {
       slope = (c.k - k) / (next - tau);
       k = c.k;
       tau = next;

@@ -59,8 +59,11 @@ inline constexpr double kFirstStep = 1.0 / 16;      // a path step at most doubl
 inline constexpr double kMaxTurn = 0.5;             // radians between successive tangents
 inline constexpr int kFoldBisections = 30;          // to locate a fold ...
 inline constexpr double kFoldBracket = 1e-5;        // ... within this arclength (relative): fold_h to ~1e-10
-inline constexpr int kCertificateMaxDim = 128;      // the largest algebra whose links are certified ...
+inline constexpr int kCertificateMaxDim = 32;       // the largest algebra whose links are certified ...
 inline constexpr double kUncertifiedMove = kAcceptFloor;  // ... and path steps moving v by more than this
+// A stiff step (h ||dg||_F > 1) that damps a component by h |Re mu| >= kDissipative: no fixed matrix contracts over
+// [0, h] there, and the linearisation's argument decides (docs/continuation.md).
+inline constexpr double kDissipative = 10.0;
 
 // How far from a prediction that moved by `move` (in the algebra) its corrected root may lie.
 inline double acceptance_radius(double move) { return std::min(kMaxCorrection, kAcceptRadius * move + kAcceptFloor); }
@@ -430,9 +433,10 @@ class BranchPath {
 
   // Whether the root `to` is the one continued from the path's point `from` (branch_certificate.hpp), with
   // D_v F(v, tau) = I - tau M(v), M(v) = dg_{z exp v} dexp_v, and F(v, tau) = v - tau g(z exp v) (3.21), (3.22).
-  // Above kCertificateMaxDim its dense O(q^3) algebra would outweigh the step it checks: the path's tests decide.
+  // Above kCertificateMaxDim its dense O(q^3) algebra would outweigh the step it checks, and on a dissipative stiff
+  // stage it cannot hold: the path's tests decide there.
   bool certified(const Point& from, const Point& to) const {
-    if (q_ > kCertificateMaxDim) return true;
+    if (q_ > kCertificateMaxDim || dissipative()) return true;
     const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(q_, q_);
     const Equation<G> unit = eq_.at_step(1.0);  // D_v F = I - M at tau = 1
     const auto m_at = [&](const typename Equation<G>::Point& p) {
@@ -451,6 +455,14 @@ class BranchPath {
       link.f_mid[k] = Eigen::VectorXd(c) - taus[k] * g_c;
     }
     return certify_link(link).holds;
+  }
+
+  bool dissipative() const {
+    if (!dissipative_) {
+      const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
+      dissipative_ = h_ * j.norm() > 1.0 && h_ * -eigenvalues_of(j).real().minCoeff() >= kDissipative;
+    }
+    return *dissipative_;
   }
 
   void spent(const SolveResult& r) { extra_iterations_ += r.iterations; }
@@ -552,6 +564,7 @@ class BranchPath {
   const bool then_linear_;
   const bool dense_;  // the path's bordered systems are solved densely: only below the matrix-free size
   bool cb_ok_ = true;
+  mutable std::optional<bool> dissipative_;  // see dissipative()
   std::vector<PathPoint> points_;
   int extra_iterations_ = 0;
 };

@@ -159,10 +159,11 @@ TEST(StiffBody, ImplicitRkmkErrorFallsWithTheStepDownToRounding) {
 
 // The library's reference solution (RKMK4 refined until two step counts agree) reports its own error as their
 // distance over 15; scipy's Radau and DOP853 at rtol 1e-13 (within 4e-14 of each other) say what it really is. The
-// estimate is neither three times too small nor three times too large (above scipy's accuracy), and an integrate
-// whose error sits at the reference's says so.
+// estimate is neither three times too small nor three times too large, above a floor of scipy's accuracy and the
+// reference's own rounding (1e-13: at k = 1e6 both numbers lie below it), and an integrate whose error sits at the
+// reference's says so.
 TEST(StiffBody, ReferenceReportsItsOwnErrorTruly) {
-  constexpr double kScipyAccuracy = 4e-14;
+  constexpr double kFloor = 1e-13;
   for (const test::StiffBodyCase& c : test::kStiffBodyCases) {
     IntegrateRequest req = stiff_body_request();
     req.problem.stiff_body.k = c.k;
@@ -172,8 +173,8 @@ TEST(StiffBody, ReferenceReportsItsOwnErrorTruly) {
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.rotation), Eigen::Map<const Eigen::Vector3d>(c.omega));
     const double truth = (*ref.y - expected).norm();
     std::printf("k = %g: %s, estimated error %.2e, against scipy %.2e\n", c.k, ref.note.c_str(), ref.error, truth);
-    EXPECT_LE(truth, 3.0 * ref.error + kScipyAccuracy) << "k = " << c.k;
-    EXPECT_LE(ref.error, 3.0 * truth + kScipyAccuracy) << "k = " << c.k;
+    EXPECT_LE(truth, 3.0 * ref.error + kFloor) << "k = " << c.k;
+    EXPECT_LE(ref.error, 3.0 * truth + kFloor) << "k = " << c.k;
   }
   IntegrateRequest req = stiff_body_request();
   req.integrator = Integrator::rkmk_gauss3;
