@@ -89,7 +89,7 @@ TEST(ChainIntegrators, DirkAndRadauConvergeToTheFlatRk4ReferenceAtTheirOrders) {
 // iterations on the stall rule: two per stage, four per dirk-cg2 step after the first, at any number of bodies. The
 // first step, from rest, finds its first stage's root too far from the tangent's prediction to accept it and starts
 // again from the linearly implicit value (continuation.hpp): at most six, where following the branch took 8 to 11.
-// Up to 128 coordinates (k <= 10) the tangent's root must also pass the branch certificate (docs/continuation.md),
+// Up to 32 coordinates (k <= 2) the tangent's root must also pass the branch certificate (docs/continuation.md),
 // which these stiff spring modes defeat at this step: each stage is then solved again from its linearly implicit
 // value, twice the iterations.
 TEST(ChainIntegrators, DirkStagesStopWhereRoundingLeavesThem) {
