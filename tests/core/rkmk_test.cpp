@@ -146,8 +146,10 @@ TEST(Rkmk, EveryDifferentialAndMethodReachesTheSameStep) {
 
 // Which root: from K = 0 (predictor none) the stages must reach the same root, continued from h = 0, as from the
 // extrapolation; on paper-sine N = 5 at h = 1/4, where a DIRK stage from its Z_i lands on a distant root. There
-// h ||dg|| > 1 at every step, so both start linearly implicit from K = 0 (rkmk_stages.hpp) and cost the same; at
-// h = 1/64, inside the tangent's regime, the extrapolation saves iterations.
+// h ||dg|| > 1 at every step, so both start linearly implicit from K = 0 (rkmk_stages.hpp) and cost about the same
+// (the extrapolation is tried first where the last step passed the tangent's test, and its root, not certified on
+// this non-dissipative field, costs a few iterations); at h = 1/64, inside the tangent's regime, the extrapolation
+// saves iterations.
 TEST(Rkmk, PredictorNoneKeepsTheContinuedRoot) {
   for (Integrator integrator : {Integrator::rkmk_gauss2, Integrator::rkmk_radau3})
     for (double h : {0.25, 1.0 / 64}) {
@@ -160,7 +162,8 @@ TEST(Rkmk, PredictorNoneKeepsTheContinuedRoot) {
       ASSERT_EQ(from_zero.status, Status::converged) << from_zero.reason;
       EXPECT_LT((from_zero.y - extrapolated.y).norm(), 1e-11) << to_string(integrator);
       if (h == 0.25) {
-        EXPECT_EQ(from_zero.total_iterations, extrapolated.total_iterations) << to_string(integrator);
+        EXPECT_NEAR(from_zero.total_iterations, extrapolated.total_iterations, 0.05 * from_zero.total_iterations)
+            << to_string(integrator);
       } else {
         EXPECT_GT(from_zero.total_iterations, extrapolated.total_iterations) << to_string(integrator);
       }
