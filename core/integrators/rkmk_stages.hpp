@@ -22,8 +22,7 @@
 // from it. continued_stages() accepts the method's solve when its iterates contract (kMaxContraction; the fixed
 // point's kFixedPointContraction) and its Theta lies within acceptance_radius of a prediction on the branch:
 //   h ||dg_{y_k}|| <= 1   from the caller's start, around the branch's tangent Theta_i = c_i h g(t_k, y_k) (the
-//                         tests continuation.hpp applies to a stage of (1.1)), and the segment from h = 0 certified
-//                         (certified_link: no other branch between);
+//                         tests continuation.hpp applies to a stage of (1.1));
 //   h ||dg_{y_k}|| > 1    (stiff) from the caller's start under the test above when the caller asks (the last
 //                         step's root passed that test: the tangent still guides this motion) and the start is a
 //                         prediction; otherwise, or where that fails, from K = 0, around its first Newton iterate:
@@ -32,10 +31,11 @@
 //                         on the linearisation's branch from h = 0 where I - tau A (x) J stays regular for every tau
 //                         in [0, h] (linearisation_regular(): J's large eigenvalues dissipative); where it may not,
 //                         as the tangent's regime;
-// otherwise it follows the branch from h = 0 by natural-parameter continuation in h (tangent, then secant
-// predictor; exact Newton corrector with the same two tests and each link certified; step controlled as
-// continuation.hpp's), and the
-// method's solve at h must stay at the branch's root. docs/integrators.md.
+// and, unless the step is dissipative (h |Re mu| >= kDissipative: the linearisation's argument decides), the
+// segment from h = 0 to the root certified (certified_link: no other branch between). Otherwise it follows the
+// branch from h = 0 by natural-parameter continuation in h (tangent, then secant predictor; exact Newton corrector
+// with the same two tests and each link that moves by more than kUncertifiedMove certified; step controlled as
+// continuation.hpp's), and the method's solve at h must stay at the branch's root. docs/integrators.md.
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
