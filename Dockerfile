@@ -18,8 +18,9 @@ RUN cmake -S . -B /build -DCMAKE_BUILD_TYPE=Release -DLIENEWTON_NATIVE=OFF -DLIE
  && cmake --build /build -j"$(nproc)" --target lienewton lienewton-server
 
 FROM debian:bookworm-slim AS runtime
-# Packages of the NEEDED libraries of lienewton and lienewton-server beyond the base image (libc6,
-# libstdc++6, libgcc-s1); apt brings their own dependencies (LLVM for llvmpipe, OpenSSL, zlib, brotli).
+# Packages of the NEEDED libraries of lienewton and lienewton-server and of OSMesa, which the renderer opens when it
+# first draws, beyond the base image (libc6, libstdc++6, libgcc-s1); apt brings their own dependencies (LLVM for
+# llvmpipe, OpenSSL, zlib, brotli).
 ARG RUNTIME_LIBS="libcpp-httplib0.11 libosmesa6 libpng16-16 libstb0 libwebp7 libwebpmux3"
 # Not visible to ldd: the TrueType font the heatmap labels are drawn with.
 ARG RUNTIME_DATA="fonts-dejavu-core"

@@ -8,6 +8,9 @@
 //   Chain_DenseVsSparse/<k>      its first 8 steps with the Newton matrix factored dense (LU on the dense
 //                                matrix) and structured (the automatic choice: sparse LU), same run: dense_over_sparse
 //                                is their CPU ratio, and both must land on the same y (to 1e-10 relative).
+//   Chain_Adaptive/<k>           rkmk-radau3 with adaptive steps (rtol = atol = 1e-6) over t = 0 ... 0.05 on k links:
+//                                accepted steps, rejected tries and the CPU per accepted step (the stiffness test
+//                                that picks the error estimate is part of every try).
 //   Program_DerivativeOnBodies   dg_y's matrix of a user's program (g = 0*y) on (SE(3) x R^6)^k, k = 8, 32, 90:
 //                                per k the peak heap of one dg_matrix, the program's reported workspace and their
 //                                ratio; heap_exponent is the peak's fitted on k, matrix_exponent the peak's in units
@@ -100,6 +103,24 @@ void Chain_DenseVsSparse(benchmark::State& state, Integrator integrator) {
                  std::string(to_string(b.linear_solver.value_or(Factorization::gmres))));
 }
 
+void Chain_Adaptive(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  IntegrateRequest req{.problem = chain(k), .h = kStep, .t_end = 0.05, .integrator = Integrator::rkmk_radau3,
+                       .reference = false, .rtol = 1e-6, .atol = 1e-6};
+  IntegrateResult r;
+  double cpu = 0;
+  for (auto _ : state) {
+    const double start = thread_cpu_seconds();
+    r = group_family("SExR^k").integrate(req, req.problem.start(), {});
+    cpu += thread_cpu_seconds() - start;
+  }
+  if (r.status != Status::converged) state.SkipWithError(r.reason.c_str());
+  const double steps = static_cast<double>(r.steps.size());
+  state.counters["steps"] = steps;
+  state.counters["rejected"] = r.rejected;
+  state.counters["cpu_per_step_ms"] = 1e3 * cpu / (double(state.iterations()) * steps);
+}
+
 void Program_DerivativeOnBodies(benchmark::State& state) {
   const std::vector<int> bodies{8, 32, 90};  // 90: the most bodies a program takes (10^6 entries per value)
   std::vector<double> ks, peak, per_matrix;
@@ -127,6 +148,7 @@ void Program_DerivativeOnBodies(benchmark::State& state) {
 
 }  // namespace
 
+BENCHMARK(Chain_Adaptive)->Arg(8)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(Program_DerivativeOnBodies)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_Scaling, dirk_cg2, Integrator::dirk_cg2)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(Chain_Scaling, rkmk_radau3, Integrator::rkmk_radau3)->Unit(benchmark::kMillisecond)->Iterations(1);

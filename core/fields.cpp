@@ -347,6 +347,11 @@ std::vector<Field> build() {
   t.push_back(integer(max_steps, integrate, {&IntegrateRequest::max_steps}));
   t.push_back(Field{.name = "frames", .type = Type::integer, .routes = integrate, .lands = {&IntegrateRequest::frames},
                     .description = "evenly spaced states to return", .minimum = 0.0, .cap = Cap::frames});
+  t.push_back(Field{.name = "reference", .type = Type::boolean, .routes = integrate,
+                    .lands = {&IntegrateRequest::reference},
+                    .description = "compute a reference solution of the problem and the run's global_error against "
+                                   "it (reference_seconds: its cost); false: skip it, and global_error is null",
+                    .default_value = IntegrateRequest{}.reference});
   t.push_back(enumeration("predictor", kAllPredictors, integrate | work_precision,
                           {&IntegrateRequest::predictor, &WorkPrecisionRequest::predictor},
                           "where each stage Y_i = Z_i exp(h a_ii g(Y_i)) starts: none = Z_i (the paper's y_0 = z); "

@@ -128,7 +128,7 @@ using Member = std::variant<
     Method SolverOptions::*, Differential SolverOptions::*, LinearSolver SolverOptions::*, Stopping SolverOptions::*,
     Globalization SolverOptions::*, double SolverOptions::*, int SolverOptions::*, bool SolverOptions::*,
     double SolveRequest::*, std::optional<Eigen::MatrixXd> SolveRequest::*,
-    double IntegrateRequest::*, int IntegrateRequest::*, Integrator IntegrateRequest::*, Predictor IntegrateRequest::*,
+    double IntegrateRequest::*, int IntegrateRequest::*, bool IntegrateRequest::*, Integrator IntegrateRequest::*, Predictor IntegrateRequest::*,
     std::optional<double> IntegrateRequest::*,
     double WorkPrecisionRequest::*, Predictor WorkPrecisionRequest::*, std::vector<double> WorkPrecisionRequest::*,
     std::vector<WorkPrecisionChoice> WorkPrecisionRequest::*,

@@ -105,6 +105,8 @@ IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallb
     } else
       res.reason += "; global_error is null: " + ref.note;
     res.reference_seconds = thread_cpu_seconds() - start;
+  } else if (!req.reference) {
+    res.reason += "; global_error is null: no reference solution was asked for (reference: false)";
   }
   return res;
 }

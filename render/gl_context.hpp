@@ -1,7 +1,9 @@
 #pragma once
 // An offscreen OpenGL 3.3 core context. The backend (OSMesa or EGL surfaceless) is chosen at build time by
 // LIENEWTON_GL_BACKEND; both render into framebuffer objects that the painter owns, so the context itself
-// needs no drawable. A context is long-lived and current in at most one thread at a time.
+// needs no drawable. A context is long-lived and current in at most one thread at a time. Destroy every context
+// before exit() begins (a renderer owned by main's scope, or one never destroyed): OSMesa is opened with the first
+// context, so its own exit handlers run before those of anything constructed earlier, a function-static renderer's.
 #include <memory>
 
 namespace lienewton::render {

@@ -51,6 +51,7 @@
 #include "core/solvers/branch_certificate.hpp"
 #include "core/solvers/continuation.hpp"
 #include "core/solvers/eigenvalues.hpp"
+#include "core/solvers/spectrum.hpp"
 #include "core/solvers/iteration_monitor.hpp"
 #include "stage_decoupling.hpp"
 #include "tableau.hpp"
@@ -109,17 +110,13 @@ class RkmkStages {
   // eigenvalues at every step: regularity is then not known, and the stages follow the branch from h = 0.
   bool linearisation_regular() const {
     if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return false;
-    const Eigen::VectorXcd& mu = eigenvalues_at_start();
-    const double rho = eigenvalues_of(tab_->a).cwiseAbs().maxCoeff();
-    for (Eigen::Index i = 0; i < mu.size(); ++i)
-      if (h_ * std::abs(mu[i]) * rho >= 1.0 && mu[i].real() > 0.0) return false;
-    return true;
+    return spectrum_at_start().stays_regular(h_ * eigenvalues_of(tab_->a).cwiseAbs().maxCoeff());
   }
-  // h max(-Re mu) over the eigenvalues mu of J = dg_{y_k}: how strongly the step damps its fastest decaying
-  // component (0 where the eigenvalues would cost O(q^3) at every step, as for linearisation_regular()).
-  double dissipation() const {
-    if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return 0.0;
-    return std::max(0.0, h_ * -eigenvalues_at_start().real().minCoeff());
+  // Whether the step damps a component of J = dg_{y_k} strongly: h (-Re mu) >= kDissipative for an eigenvalue mu
+  // (never where the eigenvalues would cost O(q^3) at every step, as for linearisation_regular()).
+  bool dissipative() const {
+    if (kSparseOperator<G> && q_ > dense_lu_max_dim()) return false;
+    return spectrum_at_start().decays_faster_than(kDissipative / h_);
   }
   Vector stage(const Eigen::VectorXd& k, int i) const { return Vector(k.segment(i * q_, q_)); }
   Vector theta(const Eigen::VectorXd& k, int i) const {
@@ -412,12 +409,12 @@ class RkmkStages {
     }
     return *jacobian_at_start_;
   }
-  const Eigen::VectorXcd& eigenvalues_at_start() const {
-    if (!eigenvalues_at_start_) eigenvalues_at_start_ = eigenvalues_of(Eigen::MatrixXd(jacobian_at_start()));
-    return *eigenvalues_at_start_;
+  const Spectrum& spectrum_at_start() const {
+    if (!spectrum_at_start_) spectrum_at_start_.emplace(Eigen::MatrixXd(jacobian_at_start()));
+    return *spectrum_at_start_;
   }
   mutable std::optional<Matrix> jacobian_at_start_;
-  mutable std::optional<Eigen::VectorXcd> eigenvalues_at_start_;
+  mutable std::optional<Spectrum> spectrum_at_start_;
 };
 
 // Whether the stages k_b at tau_b are the root continued from the root k_a at tau_a: the Krawczyk-type certificate
@@ -482,7 +479,7 @@ StageSolution continued_stages(const RkmkStages<G>& sys, const Eigen::VectorXd& 
   // A root must also be certified continued from h = 0 (certified_link), unless the step is dissipative: h |Re mu|
   // at least kDissipative for an eigenvalue of dg_{y_k}, where no fixed matrix contracts over [0, h] and the
   // linearisation's argument decides (docs/continuation.md). A stiff field that merely turns fast is certified.
-  const bool dissipative = stiff && sys.dissipation() >= kDissipative;
+  const bool dissipative = stiff && sys.dissipative();
   const auto on_branch = [&](const StageSolution& s) {
     return dissipative || certified_link(sys, root0, 0.0, s.k, sys.h());
   };

@@ -39,7 +39,7 @@
 #include "core/cancellation.hpp"
 #include "core/solver_options.hpp"
 #include "branch_certificate.hpp"
-#include "eigenvalues.hpp"
+#include "spectrum.hpp"
 #include "equation.hpp"
 #include "iteration_monitor.hpp"
 #include "newton_step.hpp"
@@ -256,12 +256,9 @@ class BranchPath {
   // a certificate: a fixed A cannot contract over [0, h] when h |mu| >> 1 (docs/continuation.md). Its linear solve
   // counts as an iteration.
   std::optional<SolveResult> linearly_implicit() {
-    const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
-    if (!(h_ * j.norm() > 1.0)) return std::nullopt;
-    const Eigen::VectorXcd mu = eigenvalues_of(j);
-    for (Eigen::Index i = 0; i < mu.size(); ++i)
-      if (h_ * std::abs(mu[i]) >= 1.0 && mu[i].real() > 0.0) return std::nullopt;
-    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(q_, q_) - h_ * j;
+    const Spectrum& j = spectrum_at_z();
+    if (!(h_ * j.norm() > 1.0) || !j.stays_regular(h_)) return std::nullopt;
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(q_, q_) - h_ * j.matrix();
     const Eigen::VectorXd hg = h_ * Eigen::VectorXd(eq_.field()->g(eq_.z()));
     const Eigen::VectorXd x = Eigen::PartialPivLU<Eigen::MatrixXd>(a).solve(hg);
     ++extra_iterations_;
@@ -457,12 +454,12 @@ class BranchPath {
     return certify_link(link).holds;
   }
 
-  bool dissipative() const {
-    if (!dissipative_) {
-      const Eigen::MatrixXd j(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z())));
-      dissipative_ = h_ * j.norm() > 1.0 && h_ * -eigenvalues_of(j).real().minCoeff() >= kDissipative;
-    }
-    return *dissipative_;
+  // h max(-Re mu) >= kDissipative for an eigenvalue mu of dg_z (then h ||dg_z||_F > 1 too: the stage is stiff).
+  bool dissipative() const { return spectrum_at_z().decays_faster_than(kDissipative / h_); }
+  // dg_z and its eigenvalues, formed once for the stage.
+  const Spectrum& spectrum_at_z() const {
+    if (!spectrum_at_z_) spectrum_at_z_.emplace(Eigen::MatrixXd(DynamicOperator<G>(eq_.field()->dg_matrix(group_, eq_.z()))));
+    return *spectrum_at_z_;
   }
 
   void spent(const SolveResult& r) { extra_iterations_ += r.iterations; }
@@ -564,7 +561,7 @@ class BranchPath {
   const bool then_linear_;
   const bool dense_;  // the path's bordered systems are solved densely: only below the matrix-free size
   bool cb_ok_ = true;
-  mutable std::optional<bool> dissipative_;  // see dissipative()
+  mutable std::optional<Spectrum> spectrum_at_z_;  // see spectrum_at_z()
   std::vector<PathPoint> points_;
   int extra_iterations_ = 0;
 };

@@ -80,28 +80,39 @@ TEST(ProblemDefaults, IntegrateStepFollowsTheTimeScale) {
 }
 
 #if !defined(LIENEWTON_SANITIZED)
-TEST(ProblemDefaults, WorkPrecisionDefaultsFitNominalOrdersOrSayWhyNot) {
-  for (ProblemKind kind : kAllProblems) {
-    WorkPrecisionRequest req;
-    req.problem = built_in(kind);
-    const WorkPrecisionResult res = work_precision(req);
-    int fitted = 0;
-    for (const WorkPrecisionSeries& s : res.series) {
-      const int p = order_of(s.choice.integrator);
-      std::printf("%s %s: p = %s (nominal %d): %s\n", std::string(to_string(kind)).c_str(),
-                  std::string(to_string(s.choice.integrator)).c_str(),
-                  s.fitted_order ? std::to_string(*s.fitted_order).c_str() : "null", p, s.fit_reason.c_str());
-      if (s.fitted_order) {
-        ++fitted;
-        EXPECT_NEAR(*s.fitted_order, p, 0.2) << to_string(kind) << " " << to_string(s.choice.integrator);
-      } else {
-        EXPECT_FALSE(s.fit_reason.empty());
-      }
-      for (const WorkPrecisionPoint& pt : s.points) EXPECT_TRUE(pt.in_fit || !pt.excluded.empty());
+// One test per problem: the stiff body's and the chain's defaults take most of the time, and ctest runs them side by
+// side.
+class WorkPrecisionDefaults : public ::testing::TestWithParam<ProblemKind> {};
+
+TEST_P(WorkPrecisionDefaults, FitNominalOrdersOrSayWhyNot) {
+  const ProblemKind kind = GetParam();
+  WorkPrecisionRequest req;
+  req.problem = built_in(kind);
+  const WorkPrecisionResult res = work_precision(req);
+  int fitted = 0;
+  for (const WorkPrecisionSeries& s : res.series) {
+    const int p = order_of(s.choice.integrator);
+    std::printf("%s %s: p = %s (nominal %d): %s\n", std::string(to_string(kind)).c_str(),
+                std::string(to_string(s.choice.integrator)).c_str(),
+                s.fitted_order ? std::to_string(*s.fitted_order).c_str() : "null", p, s.fit_reason.c_str());
+    if (s.fitted_order) {
+      ++fitted;
+      EXPECT_NEAR(*s.fitted_order, p, 0.2) << to_string(kind) << " " << to_string(s.choice.integrator);
+    } else {
+      EXPECT_FALSE(s.fit_reason.empty());
     }
-    EXPECT_GE(fitted, 1) << to_string(kind) << ": the defaults must show some order";
+    for (const WorkPrecisionPoint& pt : s.points) EXPECT_TRUE(pt.in_fit || !pt.excluded.empty());
   }
+  EXPECT_GE(fitted, 1) << to_string(kind) << ": the defaults must show some order";
 }
+
+INSTANTIATE_TEST_SUITE_P(Problems, WorkPrecisionDefaults, ::testing::ValuesIn(kAllProblems),
+                         [](const ::testing::TestParamInfo<ProblemKind>& info) {
+                           std::string name(to_string(info.param));
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 #endif
 
 }  // namespace

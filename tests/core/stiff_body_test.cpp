@@ -132,7 +132,7 @@ TEST(StiffBody, ImplicitRkmkErrorFallsWithTheStepDownToRounding) {
   const Eigen::MatrixXd expected = so3xr3::state(
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.rotation), Eigen::Map<const Eigen::Vector3d>(c.omega));
 #ifdef LIENEWTON_SANITIZED
-  const std::vector<int> halvings{10, 12};  // 2^-14 and 2^-16 take 16384 and 65536 steps a method: the Release suite's
+  const std::vector<int> halvings{8, 10};  // 2^-12 ... 2^-16 take 4096 ... 65536 steps a method: the Release suite's
 #else
   const std::vector<int> halvings{10, 12, 14, 16};
 #endif
@@ -162,6 +162,7 @@ TEST(StiffBody, ImplicitRkmkErrorFallsWithTheStepDownToRounding) {
 // estimate is neither three times too small nor three times too large, above a floor of scipy's accuracy and the
 // reference's own rounding (1e-13: at k = 1e6 both numbers lie below it), and an integrate whose error sits at the
 // reference's says so.
+#if !defined(LIENEWTON_SANITIZED)  // the references take 32768 RKMK4 steps and more: the Release suite's
 TEST(StiffBody, ReferenceReportsItsOwnErrorTruly) {
   constexpr double kFloor = 1e-13;
   for (const test::StiffBodyCase& c : test::kStiffBodyCases) {
@@ -189,6 +190,7 @@ TEST(StiffBody, ReferenceReportsItsOwnErrorTruly) {
   ASSERT_TRUE(coarse.global_error && coarse.reference_error) << coarse.reason;
   EXPECT_FALSE(coarse.global_error_at_reference) << *coarse.global_error << " against " << *coarse.reference_error;
 }
+#endif
 
 // Each parameter out of its domain is a 422 naming it; so are another group than SOxR and a z beside the
 // parameters that give the start.

@@ -129,6 +129,18 @@ TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
     EXPECT_TRUE(i.contains(field)) << field;
   }
   EXPECT_EQ(i["frame_steps"], json::parse("[0, 1, 2, 3, 4, 5]"));  // 5 steps, frames 3: every floor(5 / 3) = 1st
+  // Without its reference: the same run (the same y), no global error, and no time spent on one.
+  auto bare = c.Post("/api/v1/integrate", R"({"problem":"rigid-body","h":0.1,"t_end":0.5,"frames":3,"reference":false})",
+                     "application/json");
+  ASSERT_TRUE(bare);
+  ASSERT_EQ(bare->status, 200) << bare->body;
+  const json b = json::parse(bare->body);
+  EXPECT_EQ(b["y"], i["y"]);
+  EXPECT_EQ(b["status"], "converged");
+  EXPECT_TRUE(b["global_error"].is_null()) << b["global_error"];
+  EXPECT_TRUE(b["reference_error"].is_null()) << b["reference_error"];
+  EXPECT_EQ(b["reference_seconds"].get<double>(), 0.0);
+  EXPECT_GT(i["global_error"].get<double>(), 0.0);
   auto wp = c.Post("/api/v1/work-precision",
                    R"({"problem":"rigid-body","t_end":0.5,"h":[0.1,0.05],"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"},{"integrator":"dirk-cg2","method":"newton-group","differential":"exact"}]})",
                    "application/json");
