@@ -40,6 +40,32 @@ void check_stage_options(const IntegrateRequest& req) {
   if (o.stopping != Stopping::residual) refuse("stopping");
 }
 
+// The warnings of a converged run (IntegrateWarning): a default step raised past the field's time scale, a global
+// error that is not small against the solution, an invariant that is not conserved.
+std::vector<IntegrateWarning> warnings_of(const IntegrateRequest& req, const IntegrateResult& res,
+                                          const std::optional<Eigen::MatrixXd>& y_ref) {
+  std::vector<IntegrateWarning> out;
+  if (req.h_defaulted && !req.adaptive()) {
+    const double over = *req.h * field_rate(req.problem);
+    if (over > kDefaultStepOverTimeScale)
+      out.push_back({kStepEnlarged, "the default step h = " + format_number(*req.h) + " is " + format_number(over) +
+                                          " times the field's time scale 1/rho, raised with t_end (the default steps "
+                                          "keep t_end within " + format_number(kMaxRunSteps) + " steps of h/" +
+                                          format_number(std::ldexp(1.0, kMinDefaultStepCount - 1)) +
+                                          "): give a smaller t_end or an h"});
+  }
+  if (res.global_error && y_ref && *res.global_error > kInaccurateFraction * y_ref->norm())
+    out.push_back({kInaccurate, "global_error " + format_number(*res.global_error) + " is more than " +
+                                     format_number(kInaccurateFraction) + " of the solution's size ||y_ref||_F = " +
+                                     format_number(y_ref->norm()) + ": the trajectory is not the solution's"});
+  for (Invariant i : kAllInvariants)
+    if (const auto& drift = res.invariant_drifts[i]; drift && *drift > kInvariantDriftWarning)
+      out.push_back({kInvariantDrift, std::string(to_string(i)) + " drifts by " + format_number(*drift) +
+                                            " of its scale (more than " + format_number(kInvariantDriftWarning) +
+                                            "), though the exact flow keeps it"});
+  return out;
+}
+
 }  // namespace
 
 void resolve_defaults(IntegrateRequest& req) {
@@ -47,6 +73,7 @@ void resolve_defaults(IntegrateRequest& req) {
   validate(req.problem);
   validation::check(fields::t_end, req.t_end, "t_end");
   req.h = default_step(req.problem, req.t_end, kMaxRunSteps);
+  req.h_defaulted = true;
 }
 
 void validate(const IntegrateRequest& req) {
@@ -91,9 +118,12 @@ IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallb
     res.reason += "; frames: " + std::to_string(req.frames) + " asked, but the run took " +
                   std::to_string(res.frames.size() - 1) + " steps: every step's state is returned (" +
                   std::to_string(res.frames.size()) + " frames with y(0))";
+  res.h = *req.h;
+  std::optional<Eigen::MatrixXd> y_ref;
   if (req.reference && res.status == Status::converged) {
     const double start = thread_cpu_seconds();
     const ReferenceSolution ref = reference_solution(req.problem, y0, req.t_end);
+    y_ref = ref.y;
     if (ref.y) {
       res.global_error = (res.y - *ref.y).norm();
       res.reference_error = ref.error;
@@ -108,6 +138,7 @@ IntegrateResult integrate_validated(const IntegrateRequest& req, const StepCallb
   } else if (!req.reference) {
     res.reason += "; global_error is null: no reference solution was asked for (reference: false)";
   }
+  if (res.status == Status::converged) res.warnings = warnings_of(req, res, y_ref);
   return res;
 }
 

@@ -34,8 +34,30 @@ struct IntegrateRequest {
   // rejected) are taken.
   std::optional<double> rtol{}, atol{};
   int max_steps = static_cast<int>(fields::max_steps.default_value);
+  bool h_defaulted = false;  // not a field: h is resolve_defaults()'s, from the problem's time scale
   bool adaptive() const { return rtol || atol; }
 };
+
+// What a converged integration's answer warns of: its stages converged, yet the trajectory may not be the solution's.
+// code names the kind (IntegrateWarning's codes in words(), the OpenAPI schema); message says it with the numbers.
+struct IntegrateWarning {
+  std::string code;
+  std::string message;
+};
+// Work-precision's fits stop at errors above this fraction of ||y_ref(t_end)||_F: not small against the solution.
+inline constexpr double kSolutionScaleFraction = 5e-2;
+// The thresholds of integrate's warnings: a global error above this fraction of ||y_ref(t_end)||_F is inaccurate
+// (the state's norm mixes a body's rotation with its rates: on the heavy top ||y|| ~ 150 is its spin, so a rotation
+// 88 degrees off is 4.5 % of it); an invariant drifting by more than this fraction of its scale is not conserved; a
+// default step more than this many times the field's time scale 1/rho (time_scale.hpp) was raised past it to fit the
+// step budget.
+inline constexpr double kInaccurateFraction = 1e-2;
+inline constexpr double kInvariantDriftWarning = 1e-2;
+inline constexpr double kDefaultStepOverTimeScale = 2.0;
+// The codes, one per threshold above, in that order.
+inline constexpr const char* kStepEnlarged = "step_enlarged";
+inline constexpr const char* kInaccurate = "inaccurate";
+inline constexpr const char* kInvariantDrift = "invariant_drift";
 
 struct StepRecord {
   int step = 0;          // 1-based
@@ -89,6 +111,8 @@ struct IntegrateResult {
   double reference_seconds = 0;
   bool adaptive = false;               // the steps were chosen by the error estimate (rtol/atol)
   int rejected = 0;                    // adaptive: tries rejected, summed over the steps
+  double h = 0;                        // the request's step, or its default (adaptive: the first step tried)
+  std::vector<IntegrateWarning> warnings;  // see IntegrateWarning
 };
 
 using StepCallback = std::function<bool(const StepRecord&)>;

@@ -61,9 +61,9 @@ double min_cpu_seconds(const IntegrateRequest& ir, double first) {
 
 // The observed order (order_fit.hpp) over the points in the asymptotic regime: converged, with an error above
 // the reference's own (kReferenceErrorFactor times its estimated error) and well below the solution's size
-// (kScaleFraction of ||y_ref||), and consecutive slopes that agree (asymptotic_range). Each point says whether it is in
-// the fit and, if not, why; an order needs kMinFitPoints of them, else it is null and fit_reason says why.
-constexpr double kScaleFraction = 5e-2;
+// (kSolutionScaleFraction of ||y_ref||, integrate.hpp), and consecutive slopes that agree (asymptotic_range). Each
+// point says whether it is in the fit and, if not, why; an order needs kMinFitPoints of them, else it is null and
+// fit_reason says why.
 constexpr std::size_t kMinFitPoints = 3;
 
 void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) {
@@ -76,7 +76,7 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
   }
   const double size = reference.y ? reference.y->norm() : 0.0;
   const double floor = std::max(kErrorAtRounding, kReferenceErrorFactor * reference.error);
-  const double ceiling = kScaleFraction * size;
+  const double ceiling = kSolutionScaleFraction * size;
   std::vector<double> h, error;
   std::vector<WorkPrecisionPoint*> usable;
   int failed = 0, at_floor = 0, too_large = 0;
@@ -97,7 +97,7 @@ void fit_order(WorkPrecisionSeries& series, const ReferenceSolution& reference) 
                    "x of the reference's estimated error, or at rounding (below " + format_number(floor) + ")";
     } else if (p.error >= ceiling) {
       ++too_large;
-      p.excluded = "its error is not small against the solution (at least " + format_number(kScaleFraction) +
+      p.excluded = "its error is not small against the solution (at least " + format_number(kSolutionScaleFraction) +
                    " ||y_ref|| = " + format_number(ceiling) + "): outside the asymptotic regime";
     } else {
       usable.push_back(&p);

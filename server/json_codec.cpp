@@ -1036,7 +1036,11 @@ json to_json(const IntegrateResult& r) {
               {"cpu_seconds", finite_or_null(r.cpu_seconds)},
               {"reference_seconds", finite_or_null(r.reference_seconds)},
               {"adaptive", r.adaptive},
-              {"rejected", r.rejected}};
+              {"rejected", r.rejected},
+              {"h", finite_or_null(r.h)}};
+  json warnings = json::array();
+  for (const IntegrateWarning& w : r.warnings) warnings.push_back({{"code", w.code}, {"message", w.message}});
+  out["warnings"] = std::move(warnings);
   add_invariants(out, r.initial_invariants, "initial_", "");
   add_invariants(out, r.invariant_scales, "", "_scale");
   return add_invariants(out, r.invariant_drifts, "", "_drift");

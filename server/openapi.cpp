@@ -11,6 +11,7 @@
 #include "core/vocabulary.hpp"
 #include "core/fields.hpp"
 #include "core/group_registry.hpp"
+#include "core/solvers/iteration_monitor.hpp"
 #include "server/json_codec.hpp"
 #include "server/openapi_examples.hpp"
 #include "server/openapi_labels.hpp"
@@ -415,7 +416,24 @@ json schemas() {
                                                                       "of render/frames with the same request"}}},
                                  {"cpu_seconds", number("")}, {"reference_seconds", number("")},
                                  {"adaptive", json{{"type", "boolean"}, {"description", "the steps were chosen by the error estimate (rtol/atol)"}}},
-                                 {"rejected", integer("adaptive: tries rejected, summed over the steps")}},
+                                 {"rejected", integer("adaptive: tries rejected, summed over the steps")},
+                                 {"h", number("the request's step, or its default from the problem's time scale "
+                                              "(adaptive: the first step tried)")},
+                                 {"warnings",
+                                  json{{"type", "array"},
+                                       {"items", object({{"code", json{{"type", "string"},
+                                                                       {"enum", {kStepEnlarged, kInaccurate,
+                                                                                 kInvariantDrift}}}},
+                                                         {"message", json{{"type", "string"}}}},
+                                                        {"code", "message"})},
+                                       {"description",
+                                        "what a converged run's answer warns of: " + std::string(kStepEnlarged) +
+                                            " (a default step more than " + format_number(kDefaultStepOverTimeScale) +
+                                            "x the field's time scale 1/rho, raised to fit the step budget), " +
+                                            kInaccurate + " (global_error above " +
+                                            format_number(kInaccurateFraction) + " of ||y_ref(t_end)||_F), " +
+                                            kInvariantDrift + " (an invariant of the exact flow drifting by more "
+                                            "than " + format_number(kInvariantDriftWarning) + " of its scale)"}}}},
                                 {}, false);
   s["IntegrateResult"]["properties"] =
       invariant_numbers(invariant_numbers(invariant_numbers(s["IntegrateResult"]["properties"], "initial_", "", "at y(0): "),

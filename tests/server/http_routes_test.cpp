@@ -141,6 +141,8 @@ TEST_F(Routes, SweepIntegrateAndWorkPrecision) {
   EXPECT_TRUE(b["reference_error"].is_null()) << b["reference_error"];
   EXPECT_EQ(b["reference_seconds"].get<double>(), 0.0);
   EXPECT_GT(i["global_error"].get<double>(), 0.0);
+  EXPECT_EQ(i["h"].get<double>(), 0.1);
+  EXPECT_TRUE(i["warnings"].is_array() && i["warnings"].empty()) << i["warnings"];
   auto wp = c.Post("/api/v1/work-precision",
                    R"({"problem":"rigid-body","t_end":0.5,"h":[0.1,0.05],"choices":[{"integrator":"implicit-euler","method":"newton-group","differential":"exact"},{"integrator":"dirk-cg2","method":"newton-group","differential":"exact"}]})",
                    "application/json");

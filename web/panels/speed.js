@@ -11,7 +11,7 @@ import { entries, entry } from '../shared/catalog.js';
 import { DIFFERENTIALS, DIFFERENTIALS_SHORT, INTEGRATORS, PROBLEMS, fmtExp, fmtSeconds, label } from '../shared/labels.js';
 import { programFields, problemOf } from '../shared/request.js';
 import { sharePanel } from '../shared/share.js';
-import { statusBadge } from '../shared/summary.js';
+import { statusBadge, warningBadges } from '../shared/summary.js';
 import { REPEATS, median, withinNoise } from '../shared/repeats.js';
 
 
@@ -269,7 +269,7 @@ function integrateTable(runs, invariants) {
   return el('table', {},
     el('thead', {}, el('tr', {}, head.map((h) => el('th', { scope: 'col' }, h)))),
     el('tbody', {}, runs.map(({ choice, result: r }) => el('tr', {},
-      el('th', { scope: 'row' }, choiceLabel(choice)), el('td', {}, statusBadge(r.status)),
+      el('th', { scope: 'row' }, choiceLabel(choice)), el('td', {}, statusBadge(r.status), ...warningBadges(r.warnings)),
       el('td', {}, globalError(r)), ...invariants.map((name) => el('td', {}, fmtExp(r[`${name}_drift`]))),
       el('td', {}, fmtExp(r.orthogonality_error)), el('td', {}, fmtSeconds(r.cpu_seconds))))));
 }

@@ -7,6 +7,13 @@ export function statusBadge(status) {
   return el('span', { class: 'badge', style: `--badge:${color}`, dataset: { status } }, status.replace(/_/g, ' '));
 }
 
+// An integration's warnings (IntegrateResult.warnings) beside its status: its stages converged, but the answer may
+// not be the solution's. The code is the badge's text, the message its tooltip.
+export function warningBadges(warnings = []) {
+  return warnings.map((w) => el('span', { class: 'badge warning', title: w.message, dataset: { warning: w.code } },
+    `\u26a0 ${w.code.replace(/_/g, ' ')}`));
+}
+
 // A <dl> whose <dd>s carry data-result=<field> so tests read what a person reads.
 export function resultList(result) {
   const row = (key, term, value, note = null) => [el('dt', {}, term), el('dd', { dataset: { result: key } }, value), note && el('dd', { class: 'note' }, note)];
