@@ -16,11 +16,12 @@ run_dir=$store.nginx
 
 # A result is keyed by the compiler's mtime and size (a package's, the same in a fresh container of the same
 # Debian) and by paths relative to CCACHE_BASEDIR (the source tree: /src in the container, the checkout here),
-# never by the build folder, and by LANG (set; the LC_ variables are unset in .ci/run). Reshare: a result this machine's own cache
-# already held goes to the store too.
+# never by the build folder, and by LANG (set; the LC_ variables are unset in .ci/run). Ninja on both sides: it
+# compiles from the build folder, where make compiles from each subfolder (other relative paths, other keys).
+# Reshare: a result this machine's own cache already held goes to the store too.
 print_env() {
   echo "CCACHE_REMOTE_STORAGE=http://127.0.0.1:$port/ CCACHE_RESHARE=true CCACHE_NOHASHDIR=true" \
-       "CMAKE_CXX_COMPILER_LAUNCHER=ccache LANG=C.UTF-8"
+       "CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_GENERATOR=Ninja LANG=C.UTF-8"
 }
 
 trim() {  # oldest results first, until the store is under its cap

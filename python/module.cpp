@@ -36,7 +36,7 @@ constexpr auto kSignalPoll = std::chrono::milliseconds(20);
 // (true, result JSON) or (false, the CLI's error document {"error": {"code", "field", "message"[, line, column]}}).
 // Raises KeyboardInterrupt (or whatever a signal handler raised) when a signal stopped the work.
 py::tuple run(const std::string& command, const std::string& request) {
-  const std::optional<Command> c = command_from_string(command);
+  const CommandSpec* c = find_command(command);
   if (!c) throw py::value_error("no command " + command);
   CancellationToken token;
   std::string answer;
@@ -51,7 +51,7 @@ py::tuple run(const std::string& command, const std::string& request) {
     std::thread worker([&] {
       CancellationScope scope(&token);
       try {
-        answer = dump(run_request(*c, parse_body(request), Limits::unlimited()));
+        answer = dump(run_request(c->command, parse_body(request), Limits::unlimited()));
         ok = true;
       } catch (const RequestError& e) {
         answer = dump(error_body(e));
@@ -130,12 +130,10 @@ py::dict row(const fields::Field& f) {
 
 // The request fields COMMAND takes, in the codec's reading order, each row of core/fields.hpp as a dict.
 py::list fields_of(const std::string& command) {
-  const std::optional<Command> c = command_from_string(command);
+  const CommandSpec* c = find_command(command);
   if (!c) throw py::value_error("no command " + command);
-  constexpr fields::Route routes[] = {fields::solve, fields::sweep, fields::basins, fields::integrate,
-                                      fields::work_precision};
   py::list out;
-  for (const fields::Field* f : fields::fields_of(routes[static_cast<int>(*c)])) out.append(row(*f));
+  for (const fields::Field* f : fields::fields_of(c->fields)) out.append(row(*f));
   return out;
 }
 

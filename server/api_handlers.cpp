@@ -142,134 +142,41 @@ void ApiHandlers::throw_stopped(const CancellationToken& token, const std::strin
   }
 }
 
-// A request parsed from its body and validated, with the output caps its type has (an integration's output is
-// fitted to them first; a work-precision diagram has none of its own). The only validation: the jobs run it with
-// the core's *_validated entry points.
-template <class Request>
-Request ApiHandlers::validated(const json& body, Request (*parse)(const json&, const Limits&)) const {
-  Request request = parse(body, options_.limits);
-  validate(request);
-  apply_output_limits(request, options_.output);
-  return request;
-}
-
-// Streams one record (made only when there is a stream) and says whether the work goes on: not when the client
-// has gone or the token is cancelled, which `stopped` remembers.
-template <class MakeRecord>
-bool ApiHandlers::pass_on(const Emit& emit, const CancellationToken& token, bool& stopped, const char* type,
-                          const MakeRecord& record) {
-  if (emit && !emit(type, record())) return !(stopped = true);
-  return !(stopped = token.cancelled());
-}
-
-ApiHandlers::Job ApiHandlers::solve_job(const json& body) {
-  return [this, request = validated(body, solve_request_from_json)](const Emit& emit, const CancellationToken& token) {
-    bool stopped = false;
-    SolveResult result = lienewton::solve_validated(request, [&](const TraceRecord& t) {
-      progress(t.iteration);
-      return pass_on(emit, token, stopped, t.path_point ? "path_point" : "iteration",
-                     [&] { return to_json(t, request.solver.include_iterates); });
-    });
-    metrics_.solve_finished(std::string(to_string(result.status)), result.iterations);
-    if (result.status == Status::cancelled) throw_stopped(token);
-    return to_json(result, request.solver.include_iterates);
-  };
-}
-
-ApiHandlers::Job ApiHandlers::sweep_job(const json& body) {
-  return [this, request = validated(body, sweep_request_from_json)](const Emit& emit, const CancellationToken& token) {
-    int index = 0;  // cells finished (each one reaches this callback once)
-    bool stopped = false;
-    // Say how far it got: the cells finished (and streamed) and those never computed.
-    const auto throw_with_count = [&] {
-      const SweepRequest full = with_defaults(request);
-      const std::size_t total = full.methods.size() * full.n.size() * full.h.size();
-      const std::size_t finished = static_cast<std::size_t>(index);
-      throw_stopped(token, ": " + std::to_string(finished) + " of " + std::to_string(total) + " cells finished, " +
-                               std::to_string(total - finished) + " not computed");
+// The job of a prepared request: run with the route's hooks (progress, metrics, the stream's records, the token),
+// and when it stops early, a 504/499/503 that says how far it got where its items are counted ahead.
+ApiHandlers::Job ApiHandlers::job(PreparedRequest request) {
+  return [this, request = std::move(request)](const Emit& emit, const CancellationToken& token) {
+    std::string unit;
+    std::size_t total = 0;
+    std::atomic<std::size_t> done{0};
+    RunHooks hooks;
+    hooks.begin = [&](std::string_view u, std::size_t t) { unit = u, total = t; };
+    hooks.step = [&](std::size_t index) {
+      progress(static_cast<int>(index));
+      ++done;
+      return !token.cancelled();
     };
-    SweepResult result;
+    if (emit) hooks.record = [&](std::string_view type, json record) { return emit(type, std::move(record)); };
+    hooks.solved = [&](Status status, int iterations) {
+      metrics_.solve_finished(std::string(to_string(status)), iterations);
+    };
     try {
-      result = lienewton::sweep_validated(request, [&](const SweepCell& cell) {
-        progress(index++);
-        metrics_.solve_finished(std::string(to_string(cell.status)), cell.iterations);
-        return pass_on(emit, token, stopped, "cell", [&] { return to_json(cell); });
-      });
-    } catch (const Cancelled&) {  // inside a cell's finite-difference columns
-      throw_with_count();
+      return run_prepared(request, hooks);
+    } catch (const Cancelled&) {
+      if (total == 0) throw_stopped(token);
+      const std::size_t finished = std::min(done.load(), total);
+      throw_stopped(token, ": " + std::to_string(finished) + " of " + std::to_string(total) + " " + unit +
+                               " finished, " + std::to_string(total - finished) + " not computed");
     }
-    if (stopped || token.reason() != CancelReason::none) throw_with_count();
-    return to_json(result);
   };
 }
 
-// Streams announce the grid (axis, directions, z), then one record per row in row order, then the summary; the
-// plain answer is the whole map.
-ApiHandlers::Job ApiHandlers::basins_job(const json& body) {
-  return [this, request = validated(body, basin_request_from_json)](const Emit& emit, const CancellationToken& token) {
-    bool stopped = emit && !emit("grid", to_json(basin_grid(request)));
-    int rows = 0;
-    const auto throw_with_count = [&] {
-      throw_stopped(token, ": " + std::to_string(rows) + " of " +
-                               std::to_string(basin_shard_rows(request.size, request.shard).size()) + " rows finished");
-    };
-    BasinResult result;
-    if (!stopped) {
-      result = lienewton::basins_validated(request, [&](const BasinRow& row, const std::vector<BasinRoot>& roots) {
-        progress(rows++);
-        for (const auto& pixels : row.pixels)
-          for (const BasinPixel& p : pixels) metrics_.solve_finished(std::string(to_string(p.status)), p.iterations);
-        return pass_on(emit, token, stopped, "row", [&] { return to_json(row, roots, request.methods); });
-      });
-    }
-    if (stopped || !result.complete || token.reason() != CancelReason::none) throw_with_count();
-    return emit ? basin_summary_json(result) : to_json(result, request.methods);
-  };
-}
-
-ApiHandlers::Job ApiHandlers::integrate_job(const json& body) {
-  return [this, request = validated(body, integrate_request_from_json)](const Emit& emit,
-                                                                        const CancellationToken& token) {
-    bool stopped = false;
-    IntegrateResult result = lienewton::integrate_validated(request, [&](const StepRecord& step) {
-      progress(step.step);
-      return pass_on(emit, token, stopped, "step", [&] { return to_json(step); });
-    });
-    if (stopped || result.status == Status::cancelled) {
-      if (token.reason() != CancelReason::none) throw_stopped(token);
-    }
-    return to_json(result);
-  };
-}
-
-ApiHandlers::Job ApiHandlers::work_precision_job(const json& body) {
-  return [this, request = validated(body, work_precision_request_from_json)](const Emit& emit,
-                                                                             const CancellationToken& token) {
-    int index = 0;
-    bool stopped = false;
-    WorkPrecisionResult result = lienewton::work_precision_validated(request, [&](const WorkPrecisionSeries& series) {
-      progress(index++);
-      return pass_on(emit, token, stopped, "series", [&] { return to_json(series); });
-    });
-    if (stopped || token.reason() != CancelReason::none) throw_stopped(token);
-    return to_json(result);
-  };
-}
-
-HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, &ApiHandlers::solve_job, false, options_.request_timeout); }
-HttpResponse ApiHandlers::solve_events(const HttpRequest& req) {
-  return serve(req, &ApiHandlers::solve_job, true, options_.request_timeout);
-}
-HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, &ApiHandlers::sweep_job, false, options_.sweep_timeout); }
-HttpResponse ApiHandlers::basins(const HttpRequest& req) {
-  return serve(req, &ApiHandlers::basins_job, false, options_.sweep_timeout);
-}
-HttpResponse ApiHandlers::integrate(const HttpRequest& req) {
-  return serve(req, &ApiHandlers::integrate_job, false, options_.request_timeout);
-}
-HttpResponse ApiHandlers::work_precision(const HttpRequest& req) {
-  return serve(req, &ApiHandlers::work_precision_job, false, options_.request_timeout);
-}
+HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, Command::solve, false); }
+HttpResponse ApiHandlers::solve_events(const HttpRequest& req) { return serve(req, Command::solve, true); }
+HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, Command::sweep, false); }
+HttpResponse ApiHandlers::basins(const HttpRequest& req) { return serve(req, Command::basins, false); }
+HttpResponse ApiHandlers::integrate(const HttpRequest& req) { return serve(req, Command::integrate, false); }
+HttpResponse ApiHandlers::work_precision(const HttpRequest& req) { return serve(req, Command::work_precision, false); }
 HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists; absent ones take the defaults
 // POST takes (the paper's grid), under the same sweep deadline.
@@ -322,7 +229,7 @@ HttpResponse ApiHandlers::openapi(const HttpRequest& req) {
 }
 HttpResponse ApiHandlers::static_file(const HttpRequest& req) { return serve_static(options_.web_root, req); }
 
-HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds) {
+HttpResponse ApiHandlers::serve(const HttpRequest& req, Command command, bool sse) {
   // Asked for Server-Sent Events alone, a POST route has nothing it may send: it answers JSON or NDJSON.
   const std::string& accept = req.header("Accept");
   const bool ndjson = accept_quality(accept, "application/x-ndjson", true) > 0;
@@ -333,14 +240,17 @@ HttpResponse ApiHandlers::serve(const HttpRequest& req, MakeJob make_job, bool s
                    "GET /api/v1/solve/events");
   const json body = request_json(req);  // parsing only: no compiling, no evaluating before the gate
   auto slot = acquire_slot(req);
-  const auto token = make_token(budget_seconds, req);
-  // Making the job validates the request, which compiles and evaluates a user's program: under the slot and the
+  const bool is_map = command_spec(command).is_map;
+  const auto token = make_token(is_map ? options_.sweep_timeout : options_.request_timeout, req);
+  // Preparing the request validates it, which compiles and evaluates a user's program: under the slot and the
   // token, yet before a stream's status line, so that its refusals stay plain 400/422 answers.
   Job job;
   {
     const CancellationScope scope(token.get());
     try {
-      job = (this->*make_job)(body);
+      PreparedRequest request = prepare_request(command, body, options_.limits);
+      apply_output_limits(request, options_.output);
+      job = this->job(std::move(request));
     } catch (const Cancelled&) {
       throw_stopped(*token);
     }
@@ -360,7 +270,7 @@ HttpResponse ApiHandlers::stream(std::shared_ptr<Slot> slot, Job job, bool sse, 
   // Only application/x-ndjson and text/event-stream: the Debian build compresses (and buffers) other types.
   res.content_type = sse ? "text/event-stream" : "application/x-ndjson";
   res.stream = [this, slot, job = std::move(job), token, sse, metrics = &metrics_](const ChunkSink& sink) {
-    auto write = [&](const char* kind, json record) {
+    auto write = [&](std::string_view kind, json record) {
       const std::string line = stream_line(kind, record);
       const std::string text = sse ? "event: " + std::string(kind) + "\ndata: " + line + "\n\n" : line + "\n";
       if (!sink(text)) {

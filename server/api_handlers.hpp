@@ -9,6 +9,7 @@
 #include <mutex>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/cancellation.hpp"
@@ -17,6 +18,7 @@
 #include "server/json_codec.hpp"
 #include "server/metrics.hpp"
 #include "server/render_requests.hpp"
+#include "server/request_runner.hpp"
 #include "server/server_options.hpp"
 
 namespace lienewton::render { class Renderer; }
@@ -51,7 +53,7 @@ class ApiHandlers {
   HttpResponse static_file(const HttpRequest& req);
 
   // Writes one progress record; false when the client has gone.
-  using Emit = std::function<bool(const char* type, json record)>;
+  using Emit = std::function<bool(std::string_view type, json record)>;
   // Runs the work; returns the terminal result (without "type"). Throws ApiError/RequestError.
   using Job = std::function<json(const Emit& emit, const CancellationToken& token)>;
 
@@ -66,19 +68,8 @@ class ApiHandlers {
   // done: what the work got through before it stopped, appended to the deadline message.
   [[noreturn]] void throw_stopped(const CancellationToken& token, const std::string& done = {}) const;
 
-  // Each validates a parsed request and returns its job: called under the slot and the token.
-  using MakeJob = Job (ApiHandlers::*)(const json& body);
-  template <class Request>
-  Request validated(const json& body, Request (*parse)(const json&, const Limits&)) const;
-  template <class MakeRecord>
-  static bool pass_on(const Emit& emit, const CancellationToken& token, bool& stopped, const char* type,
-                      const MakeRecord& record);
-  Job solve_job(const json& body);
-  Job sweep_job(const json& body);
-  Job basins_job(const json& body);
-  Job integrate_job(const json& body);
-  Job work_precision_job(const json& body);
-  HttpResponse serve(const HttpRequest& req, MakeJob make_job, bool sse, double budget_seconds);
+  Job job(PreparedRequest request);
+  HttpResponse serve(const HttpRequest& req, Command command, bool sse);
   HttpResponse stream(std::shared_ptr<Slot> slot, Job job, bool sse, std::shared_ptr<CancellationToken> token);
   HttpResponse render(const HttpRequest& req, const json& body, RenderRequestFn draw, double budget_seconds);
 

@@ -106,4 +106,8 @@ void check_image_pixels(const json& body, const OutputLimits& limits) {
                      " pixels, more than the server's limit of " + std::to_string(limits.max_image_pixels));
 }
 
+void apply_output_limits(PreparedRequest& request, const OutputLimits& limits) {
+  std::visit([&](auto& r) { apply_output_limits(r, limits); }, request.request_);
+}
+
 }  // namespace lienewton::service

@@ -9,6 +9,7 @@
 #include "core/solve.hpp"
 #include "core/sweep.hpp"
 #include "server/json_codec.hpp"
+#include "server/request_runner.hpp"
 
 namespace lienewton::service {
 
@@ -34,6 +35,8 @@ void apply_output_limits(Request& request, const OutputLimits& limits) {
   if constexpr (requires { fit_output(request, limits); }) fit_output(request, limits);
   if constexpr (requires { check_output(request, limits); }) check_output(request, limits);
 }
+// The same on a prepared request: the server's JSON routes, before any work.
+void apply_output_limits(PreparedRequest& request, const OutputLimits& limits);
 // The most states up to `wanted` an integration may keep within the cap beside its steps (at least its frames).
 int fitting_frames(const IntegrateRequest& request, int wanted, const OutputLimits& limits);
 // width x height of a render request, where both are given as integers (else the parser judges them).

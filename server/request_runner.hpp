@@ -1,36 +1,90 @@
 #pragma once
-// The compute commands run on a request document: the JSON body in, the result's JSON out, through the codec's
-// checks. The one path of the CLI and the Python module, so that both answer a request alike.
+// The compute commands, one table, and the one path that runs them: a request document is read and validated
+// into a PreparedRequest, which run_prepared runs to the result's JSON. The HTTP routes, the CLI and the Python
+// module all go through it, so that they answer a request alike; what differs between them (streams, progress,
+// metrics, deadlines, MPI ranks) comes in through RunHooks.
 #include <cstddef>
 #include <functional>
 #include <optional>
 #include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
 
+#include "core/basins.hpp"
+#include "core/cancellation.hpp"
+#include "core/fields.hpp"
+#include "core/integrate.hpp"
+#include "core/solve.hpp"
+#include "core/sweep.hpp"
 #include "core/work_farm.hpp"
+#include "core/work_precision.hpp"
 #include "server/json_codec.hpp"
 
 namespace lienewton::service {
 
 enum class Command { solve, sweep, basins, integrate, work_precision };
 
-// "solve", "sweep", "basins", "integrate", "work-precision" (also "work_precision").
-std::optional<Command> command_from_string(std::string_view name);
+// One row per command: the list the CLI's commands, Python's functions and the field help are read from.
+struct CommandSpec {
+  Command command;
+  const char* name;      // as the CLI and Python spell it (its route: POST /api/v1/<name>)
+  fields::Route fields;  // the request fields it takes
+  bool is_map;           // a map of many solves (sweep, basins): --sweep-timeout, and spread over MPI ranks
+};
+const std::vector<CommandSpec>& command_table();
+// By name ("work_precision" too, as Python spells it); nullptr for none.
+const CommandSpec* find_command(std::string_view name);
+const CommandSpec& command_spec(Command command);
 
-// How far a long command has got: begin(unit, total) once before the work ("cells", "rows", "steps", "series";
-// total 0 when not known ahead), then step() per item done, from any thread. farm: spreads sweep cells and basin
-// rows over the ranks of an MPI job.
-struct RunHooks {
-  std::function<void(std::string_view unit, std::size_t total)> begin;
-  std::function<void()> step;
-  const WorkFarm* farm = nullptr;
-  // Each record the service's stream of the command sends, by type ("iteration", "path_point", "cell", "grid",
-  // "row", "step", "series"), in order; the records are only made when this is set. With it a basin map's result
-  // is its summary: its rows were the records.
-  std::function<void(std::string_view type, const json& record)> record;
+struct OutputLimits;
+
+// A request read from its document and validated (an integration's defaults resolved), with the server's output
+// caps applied where it has them (server/output_limits.hpp): the one argument run_prepared takes, so nothing runs
+// an unchecked request.
+class PreparedRequest {
+ public:
+  Command command() const { return static_cast<Command>(request_.index()); }
+  // f(the request), whichever of the five it is.
+  template <class F>
+  decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), request_); }
+
+ private:
+  // In Command's order.
+  using Request = std::variant<SolveRequest, SweepRequest, BasinRequest, IntegrateRequest, WorkPrecisionRequest>;
+  explicit PreparedRequest(Request request) : request_(std::move(request)) {}
+  Request request_;
+  friend PreparedRequest prepare_request(Command, const json&, const Limits&);
+  friend void apply_output_limits(PreparedRequest&, const OutputLimits&);
 };
 
-// Reads the request (throws RequestError naming the field), runs it and returns the result document. Work under
-// a CancellationScope stops early when its token is cancelled.
+// Reads and validates (throws RequestError naming the field). Compiles and evaluates a user's program: the server
+// calls it under the request's work slot and deadline.
+PreparedRequest prepare_request(Command command, const json& body, const Limits& limits);
+
+// How the caller follows the work. Each hook is optional; one that returns false stops the work, and
+// run_prepared then throws Cancelled.
+struct RunHooks {
+  // Once before the work of a command that counts items: its unit ("cells", "rows", "steps", "series") and their
+  // number (0 when not known ahead).
+  std::function<void(std::string_view unit, std::size_t total)> begin;
+  // After each item (a solve's iteration, a cell, a row, a step, a series), from any thread, with its index.
+  std::function<bool(std::size_t index)> step;
+  // Each record the service's stream of the command sends, by type ("iteration", "path_point", "cell", "grid",
+  // "row", "step", "series"), in order; records are only made when this is set. With it a basin map's result is
+  // its summary: its rows were the records.
+  std::function<bool(std::string_view type, json record)> record;
+  // Each solve that finished (a solve, a sweep's cell, a basin map's pixel): its status and iterations.
+  std::function<void(Status status, int iterations)> solved;
+  // Spreads sweep cells and basin rows over the ranks of an MPI job.
+  const WorkFarm* farm = nullptr;
+};
+
+// Runs the request to its result document. Throws Cancelled when a hook stopped it or the thread's cancellation
+// token did (a solve, an integration or a basin map that ended cancelled).
+json run_prepared(const PreparedRequest& request, const RunHooks& hooks = {});
+
+// prepare_request then run_prepared (no output caps): the CLI's and Python's path.
 json run_request(Command command, const json& body, const Limits& limits, const RunHooks& hooks = {});
 
 }  // namespace lienewton::service

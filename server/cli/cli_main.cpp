@@ -157,13 +157,15 @@ std::optional<std::string> nearest(const std::string& name, const std::vector<st
   return best;
 }
 
+// A compute command as the CLI spells it (work-precision, not Python's work_precision).
+const CommandSpec* plain_command(const std::string& name) {
+  const CommandSpec* c = find_command(name);
+  return c && c->name == name ? c : nullptr;
+}
+
 // The command's route in the field table, and a render command's picture options (picture_fields()).
 fields::Route route_of(const std::string& command, const std::string& sub) {
-  if (command == "solve") return fields::solve;
-  if (command == "sweep") return fields::sweep;
-  if (command == "basins") return fields::basins;
-  if (command == "integrate") return fields::integrate;
-  if (command == "work-precision") return fields::work_precision;
+  if (const CommandSpec* c = plain_command(command)) return c->fields;
   return find_render_route(sub)->base;
 }
 
@@ -287,17 +289,22 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
     return 0;
   }
   std::optional<ProgressLine> line;
-  RunHooks hooks{
-      [&](std::string_view unit, std::size_t total) { line.emplace(command, std::string(unit), total, show); },
-      [&] { line->step(); }, part.farm, {}};
+  RunHooks hooks;
+  hooks.begin = [&](std::string_view unit, std::size_t total) { line.emplace(command, std::string(unit), total, show); };
+  hooks.step = [&](std::size_t) {
+    if (line) line->step();  // a solve counts no items ahead: no progress line
+    return true;
+  };
+  hooks.farm = part.farm;
   // --stream: each record as the service's NDJSON stream sends it.
   const auto write_record = [&](std::string_view type, const json& record) {
     const std::string text = service::stream_line(type, record) + "\n";
     std::fwrite(text.data(), 1, text.size(), stdout);
     std::fflush(stdout);
+    return true;
   };
   if (flags.stream && part.prints) hooks.record = write_record;
-  const json out = run_request(*command_from_string(command), body, limits, hooks);
+  const json out = run_request(plain_command(command)->command, body, limits, hooks);
   if (!part.prints) return 0;
   if (flags.stream) write_record("result", out);
   else if (flags.format != Format::json) emit(cli::format_rows(cli::result_rows(command, out), flags.format), flags.out, flags.out_through);
@@ -348,9 +355,6 @@ int figures(const std::string& differential_name, const Part& part) {
   return 0;
 }
 
-bool plain_command(const std::string& c) {
-  return c == "solve" || c == "sweep" || c == "basins" || c == "integrate" || c == "work-precision";
-}
 bool render_command(const std::string& sub) {
   return find_render_route(sub) != nullptr;
 }
@@ -388,7 +392,8 @@ int main(int argc, char** argv) {
     farm.emplace(*mpi);
     part = {&*farm, mpi->rank() == 0, [&](std::string text) { return mpi->broadcast(std::move(text)); }};
     // Commands without a map run on rank 0 alone.
-    if (command != "sweep" && command != "basins" && command != "figures" && !part.prints) return 0;
+    const CommandSpec* spec = plain_command(command);
+    if (!(spec && spec->is_map) && command != "figures" && !part.prints) return 0;
   }
 #endif
   if (command == "figures" && argc <= 3) return figures(sub, part);
