@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <set>
+#include <stdexcept>
 
 #include "core/basins.hpp"
 #include "core/integrate.hpp"
@@ -171,12 +172,12 @@ ApiHandlers::Job ApiHandlers::job(PreparedRequest request) {
   };
 }
 
-HttpResponse ApiHandlers::solve(const HttpRequest& req) { return serve(req, Command::solve, false); }
+HttpResponse ApiHandlers::command(const HttpRequest& req) {
+  for (const CommandSpec& c : command_table())
+    if (req.path == command_path(c.command)) return serve(req, c.command, false);
+  throw std::logic_error("no command is routed to " + req.path);
+}
 HttpResponse ApiHandlers::solve_events(const HttpRequest& req) { return serve(req, Command::solve, true); }
-HttpResponse ApiHandlers::sweep(const HttpRequest& req) { return serve(req, Command::sweep, false); }
-HttpResponse ApiHandlers::basins(const HttpRequest& req) { return serve(req, Command::basins, false); }
-HttpResponse ApiHandlers::integrate(const HttpRequest& req) { return serve(req, Command::integrate, false); }
-HttpResponse ApiHandlers::work_precision(const HttpRequest& req) { return serve(req, Command::work_precision, false); }
 HttpResponse ApiHandlers::render_frames(const HttpRequest& req) { return render(req, request_json(req), service::render_frames, options_.request_timeout); }
 // The heatmap's GET form carries a sweep request, whose methods/n/h are lists; absent ones take the defaults
 // POST takes (the paper's grid), under the same sweep deadline.

@@ -32,12 +32,9 @@ class ApiHandlers {
               const std::atomic<bool>& abort_work);
   ~ApiHandlers();
 
-  HttpResponse solve(const HttpRequest& req);
+  // POST /api/v1/<command>: every compute command of command_table(), by the request's path.
+  HttpResponse command(const HttpRequest& req);
   HttpResponse solve_events(const HttpRequest& req);
-  HttpResponse sweep(const HttpRequest& req);
-  HttpResponse basins(const HttpRequest& req);
-  HttpResponse integrate(const HttpRequest& req);
-  HttpResponse work_precision(const HttpRequest& req);
   HttpResponse render_frames(const HttpRequest& req);
   HttpResponse render_heatmap(const HttpRequest& req);
   HttpResponse render_basins(const HttpRequest& req);

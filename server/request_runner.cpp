@@ -8,11 +8,22 @@ namespace lienewton::service {
 // In Command's order: command_spec() indexes it.
 const std::vector<CommandSpec>& command_table() {
   static const std::vector<CommandSpec> table{
-      {Command::solve, "solve", fields::solve, false},
-      {Command::sweep, "sweep", fields::sweep, true},
-      {Command::basins, "basins", fields::basins, true},
-      {Command::integrate, "integrate", fields::integrate, false},
-      {Command::work_precision, "work-precision", fields::work_precision, false},
+      {Command::solve, "solve", fields::solve, false,
+       "Solve y = z exp(h g(y)); streams NDJSON trace records with Accept: application/x-ndjson", "SolveRequest",
+       "SolveResult"},
+      {Command::sweep, "sweep", fields::sweep, true,
+       "Stability map over (method, n, h); NDJSON streams one cell record per finished cell", "SweepRequest",
+       "SweepResult"},
+      {Command::basins, "basins", fields::basins, true,
+       "Basin map: each method from every start y0 = z exp(a B1 + b B2) of a grid, each pixel classified by the root "
+       "it reached or its failure; NDJSON streams a grid record, one row record per finished row, then the summary",
+       "BasinRequest", "BasinResult"},
+      {Command::integrate, "integrate", fields::integrate, false,
+       "Time stepping with a Lie group integrator (implicit; rkmk4 explicit); NDJSON streams one step record per step",
+       "IntegrateRequest", "IntegrateResult"},
+      {Command::work_precision, "work-precision", fields::work_precision, false,
+       "CPU time vs global error per (integrator, method, differential); NDJSON streams one series record each",
+       "WorkPrecisionRequest", "WorkPrecisionResult"},
   };
   return table;
 }

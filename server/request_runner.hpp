@@ -28,9 +28,12 @@ enum class Command { solve, sweep, basins, integrate, work_precision };
 // One row per command: the list the CLI's commands, Python's functions and the field help are read from.
 struct CommandSpec {
   Command command;
-  const char* name;      // as the CLI and Python spell it (its route: POST /api/v1/<name>)
+  const char* name;      // as the CLI and Python spell it; its route is POST /api/v1/<name>
   fields::Route fields;  // the request fields it takes
   bool is_map;           // a map of many solves (sweep, basins): --sweep-timeout, and spread over MPI ranks
+  const char* summary;   // what its route does (OpenAPI), and what it streams
+  const char* request_schema;  // the OpenAPI schemas of its request and result
+  const char* result_schema;
 };
 const std::vector<CommandSpec>& command_table();
 // By name ("work_precision" too, as Python spells it); nullptr for none.

@@ -1,5 +1,9 @@
 #include "server/routes.hpp"
 
+#include <string>
+
+#include "core/options.hpp"
+#include "core/vocabulary.hpp"
 #include "server/api_handlers.hpp"
 
 namespace lienewton::service {
@@ -8,29 +12,19 @@ namespace {
 const std::vector<int> kJsonPostErrors{400, 403, 406, 411, 413, 415, 422, 429, 431, 503, 504};
 const std::vector<int> kGetWorkErrors{400, 403, 413, 422, 429, 431, 503, 504};
 
+// "energy, vertical momentum, ...": every invariant a built-in problem reports, from the vocabulary.
+std::string invariant_names() {
+  std::string names;
+  for (Invariant i : kAllInvariants) names += (names.empty() ? "" : ", ") + std::string(words(i).short_label);
+  return names;
+}
+
 std::vector<RouteSpec> build_table() {
   const std::string ndjson = "application/x-ndjson";
   std::vector<RouteSpec> t{
-      {&ApiHandlers::solve, "POST", "/api/v1/solve",
-       "Solve y = z exp(h g(y)); streams NDJSON trace records with Accept: application/x-ndjson", BodyKind::json,
-       true, "SolveRequest", {"application/json", ndjson}, "SolveResult", kJsonPostErrors},
       {&ApiHandlers::solve_events, "GET", "/api/v1/solve/events",
        "The solve stream as Server-Sent Events (query parameters mirror SolveRequest)", BodyKind::none, true,
        "SolveRequest", {"text/event-stream"}, "SolveStreamRecord", kGetWorkErrors},
-      {&ApiHandlers::sweep, "POST", "/api/v1/sweep",
-       "Stability map over (method, n, h); NDJSON streams one cell record per finished cell", BodyKind::json, true,
-       "SweepRequest", {"application/json", ndjson}, "SweepResult", kJsonPostErrors},
-      {&ApiHandlers::basins, "POST", "/api/v1/basins",
-       "Basin map: each method from every start y0 = z exp(a B1 + b B2) of a grid, each pixel classified by the root "
-       "it reached or its failure; NDJSON streams a grid record, one row record per finished row, then the summary",
-       BodyKind::json, true, "BasinRequest", {"application/json", ndjson}, "BasinResult", kJsonPostErrors},
-      {&ApiHandlers::integrate, "POST", "/api/v1/integrate",
-       "Time stepping with a Lie group integrator (implicit; rkmk4 explicit); NDJSON streams one step record per step",
-       BodyKind::json, true, "IntegrateRequest", {"application/json", ndjson}, "IntegrateResult", kJsonPostErrors},
-      {&ApiHandlers::work_precision, "POST", "/api/v1/work-precision",
-       "CPU time vs global error per (integrator, method, differential); NDJSON streams one series record each",
-       BodyKind::json, true, "WorkPrecisionRequest", {"application/json", ndjson}, "WorkPrecisionResult",
-       kJsonPostErrors},
       {&ApiHandlers::render_frames, "POST", "/api/v1/render/frames",
        "PNG of the rotation frames (each state's rotation part: SO(3), or R of SE, SOxR, SExR) of a solve (iterates) or integration (trajectory)", BodyKind::json, true,
        "RenderFramesRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
@@ -63,7 +57,7 @@ std::vector<RouteSpec> build_table() {
        "GET form of render/work-precision for <img src> (choices as JSON text)", BodyKind::none, true,
        "RenderWorkPrecisionRequest", {"image/png", "image/svg+xml"}, "", kGetWorkErrors},
       {&ApiHandlers::render_invariants, "POST", "/api/v1/render/invariants",
-       "PNG of the drift of a problem's invariants (energy, vertical momentum) over one integration's time",
+       "PNG of the drift of a problem's invariants (" + invariant_names() + ") over one integration's time",
        BodyKind::json, true, "RenderInvariantsRequest", {"image/png", "image/svg+xml"}, "", kJsonPostErrors},
       {&ApiHandlers::render_invariants, "GET", "/api/v1/render/invariants",
        "GET form of render/invariants for <img src> (query parameters mirror RenderInvariantsRequest)", BodyKind::none,
@@ -87,6 +81,10 @@ std::vector<RouteSpec> build_table() {
       {&ApiHandlers::static_file, "GET", "/", "The dashboard (static files from the web root are served below /)",
        BodyKind::none, false, "", {"text/html"}, "", {404}},
   };
+  // The compute commands' routes, one per row of the command table.
+  for (const CommandSpec& c : command_table())
+    t.push_back({&ApiHandlers::command, "POST", command_path(c.command), c.summary, BodyKind::json, true,
+                 c.request_schema, {"application/json", ndjson}, c.result_schema, kJsonPostErrors});
   return t;
 }
 
@@ -96,6 +94,8 @@ const std::vector<RouteSpec>& route_table() {
   static const std::vector<RouteSpec> table = build_table();
   return table;
 }
+
+std::string command_path(Command command) { return "/api/v1/" + std::string(command_spec(command).name); }
 
 const RouteSpec* find_route(const std::string& method, const std::string& path) {
   for (const auto& r : route_table()) {

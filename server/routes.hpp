@@ -6,6 +6,7 @@
 
 #include "server/http_exchange.hpp"
 #include "server/request_limits.hpp"
+#include "server/request_runner.hpp"
 
 namespace lienewton::service {
 
@@ -29,6 +30,9 @@ struct RouteSpec {
 
 // Every route this build serves (render routes only when the renderer is built in).
 const std::vector<RouteSpec>& route_table();
+
+// A compute command's route: POST /api/v1/<its name>.
+std::string command_path(Command command);
 
 // The route a path belongs to, ignoring the method; nullptr for static files and unknown paths.
 const RouteSpec* find_route(const std::string& method, const std::string& path);

@@ -50,12 +50,12 @@ TEST(ApiHandlers, ReadinessFollowsTheDrainFlag) {
 // The plain JSON answer and the stream's closing record are the same result (wall times aside).
 TEST(ApiHandlers, JsonAnswerEqualsTheStreamsResult) {
   Handlers h;
-  const HttpResponse plain = h.api.solve(post("/api/v1/solve", kSolve));
+  const HttpResponse plain = h.api.command(post("/api/v1/solve", kSolve));
   ASSERT_EQ(plain.status, 200);
   EXPECT_FALSE(plain.stream);
   EXPECT_EQ(plain.content_type, "application/json");
   EXPECT_EQ(h.metrics.work_in_flight(), 0);
-  HttpResponse streamed = h.api.solve(post("/api/v1/solve", kSolve, "application/x-ndjson"));
+  HttpResponse streamed = h.api.command(post("/api/v1/solve", kSolve, "application/x-ndjson"));
   std::string body;
   ASSERT_TRUE(streamed.stream([&](std::string_view chunk) { return body.append(chunk), true; }));
   json last = ndjson_lines(body).back();
@@ -72,7 +72,7 @@ TEST(ApiHandlers, JsonAnswerEqualsTheStreamsResult) {
 
 TEST(ApiHandlers, NdjsonStreamsOneRecordPerIterateThenTheResult) {
   Handlers h;
-  HttpResponse res = h.api.solve(post("/api/v1/solve", kSolve, "application/x-ndjson"));
+  HttpResponse res = h.api.command(post("/api/v1/solve", kSolve, "application/x-ndjson"));
   ASSERT_TRUE(res.stream);
   EXPECT_EQ(res.content_type, "application/x-ndjson");
   EXPECT_EQ(h.metrics.work_in_flight(), 1);  // the stream holds the work slot until it is dropped
@@ -108,7 +108,7 @@ TEST(ApiHandlers, SolveEventsStreamsSseFromQueryParameters) {
 
 TEST(ApiHandlers, AStreamStopsWhenTheClientIsGone) {
   Handlers h;
-  HttpResponse res = h.api.solve(post("/api/v1/solve", kSolve, "application/x-ndjson"));
+  HttpResponse res = h.api.command(post("/api/v1/solve", kSolve, "application/x-ndjson"));
   ASSERT_TRUE(res.stream);
   int writes = 0;
   EXPECT_FALSE(res.stream([&](std::string_view) { return ++writes, false; }));
