@@ -88,7 +88,21 @@ test('heavy top: play, scrub, turn, and its state against time', async () => {
     return n;
   });
   assert.ok(blue > 500, `${blue} bluish pixels`);
+  // rkmk-gauss2 at the problem's default step: within 1e-2 of the solution's scale (7.9e-4 of 150), no warning.
+  assert.equal(await page.locator('#motion .live .badge.warning').count(), 0);
   await page.screenshot({ path: `${shots}/motion-heavy-top-1440x900.png`, fullPage: true });
+  // Implicit Euler at the same step converges at every step over a damped path: global error 6.75 of 150, the
+  // energy and the vertical momentum drifting by 5 % and 54 %. The panel says so beside the status.
+  await page.locator('#motion select[name="integrator"]').selectOption('implicit-euler');
+  await run(page);
+  assert.match(await page.locator('#motion .live').innerText(), /^converged: /);
+  const badge = (code) => page.locator(`#motion .live .badge.warning[data-warning="${code}"]`);
+  assert.ok(await badge('inaccurate').isVisible());
+  assert.match(await badge('inaccurate').getAttribute('title'), /^global_error .* the trajectory is not the solution's$/);
+  // One badge for both drifting invariants, each named in its tooltip.
+  assert.equal(await badge('invariant_drift').innerText(), '\u26a0 invariant drift (2)');
+  assert.match(await badge('invariant_drift').getAttribute('title'), /^energy drifts by .*\nvertical_momentum drifts by /);
+  await page.screenshot({ path: `${shots}/motion-heavy-top-warnings-1440x900.png`, fullPage: true });
   await page.close();
 });
 

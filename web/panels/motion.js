@@ -12,6 +12,7 @@ import { INTEGRATORS, PROBLEMS } from '../shared/labels.js';
 import { motionPlayer } from '../shared/motion_player.js';
 import { groupOf, programFields, problemOf } from '../shared/request.js';
 import { sharePanel } from '../shared/share.js';
+import { warningBadges } from '../shared/summary.js';
 
 const MECHANICS = ['heavy-top', 'rigid-body', 'stiff-body', 'chain'];
 // The charts' states: the API's cap on frames. The heavy top's w1, w3 turn with its 150 rad/s spin (a period of
@@ -148,8 +149,11 @@ export function createMotionPanel(root) {
       last = { request, integration };
       charts.hidden = false;
       drawCharts(request, integration);
-      live.textContent = `${integration.status}: ${integration.steps.length} steps, ${player.frameCount} frames, `
-        + `${((performance.now() - startedAt) / 1000).toFixed(2)} s from Run to picture.`;
+      // A converged run is not yet a right one: its warnings (an error beyond the solution's scale, a drifting
+      // invariant, an enlarged step) stand beside the status, as in the Speed panel.
+      live.replaceChildren(`${integration.status}: ${integration.steps.length} steps, ${player.frameCount} frames, `
+        + `${((performance.now() - startedAt) / 1000).toFixed(2)} s from Run to picture. `,
+      ...warningBadges(integration.warnings));
       share.refresh();
     });
   }

@@ -10,8 +10,11 @@ export function statusBadge(status) {
 // An integration's warnings (IntegrateResult.warnings) beside its status: its stages converged, but the answer may
 // not be the solution's. The code is the badge's text, the message its tooltip.
 export function warningBadges(warnings = []) {
-  return warnings.map((w) => el('span', { class: 'badge warning', title: w.message, dataset: { warning: w.code } },
-    `\u26a0 ${w.code.replace(/_/g, ' ')}`));
+  // One badge per code (two drifting invariants are one "invariant drift"), every message in its tooltip.
+  const byCode = new Map();
+  for (const w of warnings) byCode.set(w.code, [...(byCode.get(w.code) ?? []), w.message]);
+  return [...byCode].map(([code, messages]) => el('span', { class: 'badge warning', title: messages.join('\n'),
+    dataset: { warning: code } }, `\u26a0 ${code.replace(/_/g, ' ')}${messages.length > 1 ? ` (${messages.length})` : ''}`));
 }
 
 // A <dl> whose <dd>s carry data-result=<field> so tests read what a person reads.
