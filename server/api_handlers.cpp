@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -334,6 +335,12 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   };
   hooks.on_cell = [&](const SweepCell& c) { metrics_.solve_finished(std::string(to_string(c.status)), c.iterations); };
   hooks.on_solve = [&](const SolveResult& r) { metrics_.solve_finished(std::string(to_string(r.status)), r.iterations); };
+  // What a picture cannot say: the drawn integration's warnings (codes, each once), as a header.
+  std::vector<std::string> warnings;
+  hooks.on_integration = [&](const IntegrateResult& r) {
+    for (const IntegrateWarning& w : r.warnings)
+      if (std::find(warnings.begin(), warnings.end(), w.code) == warnings.end()) warnings.push_back(w.code);
+  };
   std::vector<unsigned char> picture;
   try {
     picture = draw(body, options_.limits, *renderer_, hooks);
@@ -347,6 +354,11 @@ HttpResponse ApiHandlers::render(const HttpRequest& req, const json& body, Rende
   HttpResponse res;
   res.set_header("Cache-Control", cacheable ? kRenderCacheControl : "no-store");
   if (cacheable) res.set_header("ETag", etag);
+  if (!warnings.empty()) {
+    std::string codes;
+    for (const std::string& code : warnings) codes += (codes.empty() ? "" : ", ") + code;
+    res.set_header(kWarningsHeader, codes);
+  }
   res.content_type = image_type(picture);
   res.body.assign(picture.begin(), picture.end());
   return res;

@@ -694,6 +694,14 @@ std::string openapi_document(const ServerOptions& options) {
           {"schema", {{"type", "string"}}}};
       op["responses"]["304"] = {{"description", "Not Modified: If-None-Match named this request's ETag; nothing was drawn"}};
     }
+    const bool draws_an_integration = r.request_schema == "RenderFramesRequest" ||
+                                      r.request_schema == "RenderMotionRequest" ||
+                                      r.request_schema == "RenderInvariantsRequest";
+    if (draws_an_integration)
+      op["responses"]["200"]["headers"][kWarningsHeader] = {
+          {"description", "present when the picture draws an integration whose result has warnings: their codes "
+                          "(IntegrateResult.warnings), comma-separated; a picture cannot say them"},
+          {"schema", {{"type", "string"}}}};
     for (int status : r.errors) {
       op["responses"][std::to_string(status)] = {{"description", status_text(status)},
                                                  {"content", {{"application/json", {{"schema", ref("Error")}}}}}};

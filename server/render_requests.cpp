@@ -371,6 +371,7 @@ Shown run_shown(json& request, bool integration, const Limits& limits, const Ren
   IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
+  if (hooks.on_integration) hooks.on_integration(result);
   shown.states = result.frames.empty() ? std::vector<Eigen::MatrixXd>{result.y} : result.frames;
   shown.times = result.frames.empty() ? std::vector<double>{r.t_end} : result.frame_times;
   shown.start = shown.states.front();
@@ -598,6 +599,7 @@ std::vector<unsigned char> render_invariants(json request, const Limits& limits,
   const IntegrateResult result =
       integrate_validated(r, [&](const StepRecord& s) { return !(stopped = !keep_going(hooks, s.step)); });
   if (stopped) throw RenderCancelled{};
+  if (hooks.on_integration) hooks.on_integration(result);
   if (result.status != Status::converged)
     throw ApiError(422, "unprocessable", "h", "the integration ended " + std::string(to_string(result.status)) +
                                                   ": " + result.reason);

@@ -22,7 +22,11 @@ struct RenderHooks {
   std::function<bool(int index)> keep_going;                 // per iteration/step/cell; false cancels
   std::function<void(const SweepCell&)> on_cell;             // sweep cells, for metrics
   std::function<void(const SolveResult&)> on_solve;          // finished solve, for metrics
+  std::function<void(const IntegrateResult&)> on_integration;  // a finished integration drawn (its warnings)
 };
+
+// The response header of a render that drew an integration with warnings: their codes, comma-separated.
+inline constexpr const char* kWarningsHeader = "X-Lienewton-Warnings";
 
 // Thrown when keep_going returned false.
 struct RenderCancelled {};

@@ -284,7 +284,13 @@ int run(const std::string& command, const std::string& sub, const Flags& flags, 
   const bool show = part.prints && !flags.quiet && isatty(STDERR_FILENO);
   if (command == "render") {
     render::Renderer renderer(1);
-    const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, {});
+    RenderHooks hooks;
+    // The picture cannot say them: an integration's warnings go to stderr.
+    hooks.on_integration = [&](const IntegrateResult& r) {
+      if (!part.prints) return;
+      for (const IntegrateWarning& w : r.warnings) std::cerr << "lienewton: warning: " << w.code << ": " << w.message << "\n";
+    };
+    const std::vector<unsigned char> picture = find_render_route(sub)->draw(body, limits, renderer, hooks);
     emit(std::string(picture.begin(), picture.end()), flags.out, flags.out_through);
     return 0;
   }
