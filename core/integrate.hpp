@@ -21,7 +21,11 @@ struct IntegrateRequest {
   // resolve_defaults() before anything runs.
   std::optional<double> h{};
   double t_end = 1.0;
-  Integrator integrator = Integrator::implicit_euler;
+  // Two-stage Gauss (order 4, A-stable, symplectic): at the default step every built-in problem's answer is within
+  // 1e-3 of its reference (the heavy top 4e-4 of a norm of 150, where implicit Euler's damped path is 6.9 off) for
+  // about the cost of implicit Euler (1.0-1.6x). Where a request leaves it out and its coupled stage system is too
+  // large to solve densely, resolve_defaults() takes dirk-cg3 instead (integrator_defaulted).
+  Integrator integrator = Integrator::rkmk_gauss2;
   // Where each stage's first solve starts: lie-euler (default) at the explicit Lie-Euler value, the tangent of the
   // stage's branch of roots at h = 0; none at Z_i, as the paper starts at y_0 = z. Either way the stage's root must
   // be the one continued from Z_i (core/integrators/stepper.hpp).
@@ -35,6 +39,7 @@ struct IntegrateRequest {
   std::optional<double> rtol{}, atol{};
   int max_steps = static_cast<int>(fields::max_steps.default_value);
   bool h_defaulted = false;  // not a field: h is resolve_defaults()'s, from the problem's time scale
+  bool integrator_defaulted = false;  // not a field: the request did not name one (the codec sets it)
   bool adaptive() const { return rtol || atol; }
 };
 

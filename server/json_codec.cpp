@@ -587,6 +587,7 @@ void check_t_end(double t_end, const Limits& limits) {
 IntegrateRequest integrate_request_from_json(const json& body, const Limits& limits) {
   IntegrateRequest r = read_request<IntegrateRequest>(body, fields::integrate, limits);
   check_t_end(r.t_end, limits);
+  r.integrator_defaulted = !body.contains("integrator");
   resolve_defaults(r);
   // Adaptive steps: h is only the first step; the tries are bounded by max_steps, at most the server's step limit.
   if (r.adaptive()) {

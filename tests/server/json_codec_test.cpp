@@ -150,6 +150,19 @@ TEST(JsonCodec, IntegrateAndWorkPrecision) {
   EXPECT_EQ(r.integrator, Integrator::dirk_cg2);
   EXPECT_EQ(r.t_end, 2);
   EXPECT_EQ(r.frames, 5);
+  // Without an integrator: rkmk-gauss2, or dirk-cg3 where its coupled stages would be too large to solve densely
+  // (SO(n), n > 16); a request that names rkmk-gauss2 there is refused naming the field.
+  const auto integrator_of = [](const std::string& text) {
+    return integrate_request_from_json(parse_body(text), Limits{}).integrator;
+  };
+  EXPECT_EQ(integrator_of(R"({"problem":"paper-sine","n":16})"), Integrator::rkmk_gauss2);
+  EXPECT_EQ(integrator_of(R"({"problem":"paper-sine","n":17})"), Integrator::dirk_cg3);
+  EXPECT_EQ(integrator_of(R"({"problem":"chain","n":32})"), Integrator::rkmk_gauss2);  // bodies: sparse stages
+  EXPECT_EQ(failure_of([] {
+              validate(integrate_request_from_json(
+                  parse_body(R"({"problem":"paper-sine","n":17,"integrator":"rkmk-gauss2"})"), Limits{}));
+            }).field,
+            "integrator");
   // The solver options are the solve's, linear_solver included.
   const auto gmres = integrate_request_from_json(parse_body(R"({"linear_solver":"gmres","tol":1e-10})"), Limits{});
   EXPECT_EQ(gmres.solver.linear_solver, LinearSolver::gmres);
