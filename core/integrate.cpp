@@ -69,8 +69,8 @@ std::vector<IntegrateWarning> warnings_of(const IntegrateRequest& req, const Int
 // An implicit RKMK method's Newton factors its s q x s q stage system densely: as large as the dense Newton step of a
 // single equation goes (beyond it the time and memory grow as (s q)^3 and (s q)^2). A family that bounds its index
 // itself (a system of bodies) keeps the stage system sparse.
-bool stages_too_large_for(const IntegrateRequest& req, Integrator integrator) {
-  return integrators::tableau_of(integrator).form == integrators::Form::implicit_rkmk &&
+bool stages_too_large(const IntegrateRequest& req) {
+  return integrators::tableau_of(req.integrator).form == integrators::Form::implicit_rkmk &&
          !req.problem.family().max_index() && req.problem.n > kKrylovThreshold;
 }
 
@@ -78,7 +78,7 @@ bool stages_too_large_for(const IntegrateRequest& req, Integrator integrator) {
 
 void resolve_defaults(IntegrateRequest& req) {
   // DIRK-CG3 solves its stages one at a time by the request's method (Krylov above the dense bound): order 3, L-stable.
-  if (req.integrator_defaulted && stages_too_large_for(req, req.integrator)) req.integrator = Integrator::dirk_cg3;
+  if (req.integrator_defaulted && stages_too_large(req)) req.integrator = Integrator::dirk_cg3;
   if (req.h) return;
   validate(req.problem);
   validation::check(fields::t_end, req.t_end, "t_end");
@@ -102,7 +102,7 @@ void validate(const IntegrateRequest& req) {
   check_stage_options(req);
   if (req.frames < 0 || req.frames > IntegrateRequest::kMaxFrames)
     validation::invalid("frames", "frames must be an integer in [0, " + std::to_string(IntegrateRequest::kMaxFrames) + "]");
-  if (stages_too_large_for(req, req.integrator))
+  if (stages_too_large(req))
     validation::invalid("integrator", std::string(to_string(req.integrator)) +
                                           " solves its coupled stage system densely: n must be at most " +
                                           std::to_string(kKrylovThreshold));

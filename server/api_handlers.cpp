@@ -158,7 +158,7 @@ ApiHandlers::Job ApiHandlers::job(PreparedRequest request) {
       ++done;
       return !token.cancelled();
     };
-    if (emit) hooks.record = [&](std::string_view type, json record) { return emit(type, std::move(record)); };
+    hooks.record = emit;  // records are made only for a stream
     hooks.solved = [&](Status status, int iterations) {
       metrics_.solve_finished(std::string(to_string(status)), iterations);
     };

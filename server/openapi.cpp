@@ -597,6 +597,12 @@ const char* request_schema_of(fields::Route route) {
   }
 }
 
+// The render route of a path below /api/v1/render/, else nullptr.
+const RenderRoute* render_route_of(const std::string& path) {
+  static const std::string kRender = "/api/v1/render/";
+  return path.rfind(kRender, 0) == 0 ? find_render_route(path.substr(kRender.size())) : nullptr;
+}
+
 // Query parameters of a GET form: one per field the route reads (see query_params.hpp), in the codec's words: its
 // own schema's properties (a render's picture options), then a render's base request (render_routes(): a solve's,
 // an integration's too where it draws one).
@@ -625,8 +631,7 @@ json query_parameters(const json& all_schemas, const RouteSpec& route) {
     }
   };
   add(all_schemas[route.request_schema]);
-  static const std::string kRender = "/api/v1/render/";
-  const RenderRoute* render = route.path.rfind(kRender, 0) == 0 ? find_render_route(route.path.substr(kRender.size())) : nullptr;
+  const RenderRoute* render = render_route_of(route.path);
   if (!render) return params;
   json base = all_schemas[request_schema_of(render->base)];
   if (render->picture == fields::render_residuals) {  // one solve per method x differential: the lists choose them
@@ -694,10 +699,8 @@ std::string openapi_document(const ServerOptions& options) {
           {"schema", {{"type", "string"}}}};
       op["responses"]["304"] = {{"description", "Not Modified: If-None-Match named this request's ETag; nothing was drawn"}};
     }
-    const bool draws_an_integration = r.request_schema == "RenderFramesRequest" ||
-                                      r.request_schema == "RenderMotionRequest" ||
-                                      r.request_schema == "RenderInvariantsRequest";
-    if (draws_an_integration)
+    const RenderRoute* render = render_route_of(r.path);
+    if (render && (render->integrations_too || render->base == fields::integrate))  // it draws an integration
       op["responses"]["200"]["headers"][kWarningsHeader] = {
           {"description", "present when the picture draws an integration whose result has warnings: their codes "
                           "(IntegrateResult.warnings), comma-separated; a picture cannot say them"},
